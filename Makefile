@@ -1,0 +1,32 @@
+# Thin wrapper over CMake. `make run` and `make test` install missing Debian packages first.
+BUILD ?= build
+JOBS  ?= 2
+SCENE ?= options/gregoire_d50_hn.opts
+# Open MPI refuses root without these; CI runs as root.
+export OMPI_ALLOW_RUN_AS_ROOT := 1
+export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
+
+.PHONY: all deps build run test format clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release
+
+build: deps $(BUILD)/CMakeCache.txt
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	$(BUILD)/pdimplicit -options_file $(SCENE) -pd_progress
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+format:
+	clang-format -i src/*.c src/*/*.c src/*/*.h include/*.h tests/*.c
+
+clean:
+	rm -rf $(BUILD)

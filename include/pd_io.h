@@ -1,0 +1,36 @@
+/* Reporter: curve.csv, summary.json, fields.h5/.xmf, curve.svg, progress line. Files are written whole
+   (temporary name, then rename) by rank 0 or collectively for HDF5. */
+#pragma once
+#include "pd_model.h"
+
+typedef struct {
+  PetscInt  step, newton_its, ksp_its, broken_bonds;
+  PetscReal lambda, load, disp, cmod, wall;
+} PDCurveRow;
+
+typedef struct {
+  PetscInt    nrows, capacity;
+  PDCurveRow *rows;
+  PetscInt    steps, newton_its, ksp_its;
+  PetscBool   converged;
+  char        status[256];
+  PetscReal   t_setup, t_assembly, t_solve, t_output, t_start;
+  PetscInt    nfield_steps;
+  PetscInt   *field_steps; /* steps whose fields were written */
+  PetscViewer h5;          /* open HDF5 viewer on the temporary fields file */
+  PetscReal   matrix_bytes;
+  char        solver[128]; /* snes/ksp/pc types actually used */
+  char        dir[PETSC_MAX_PATH_LEN];
+} PDRecord;
+
+PetscErrorCode PDRecordCreate(MPI_Comm, const PDScene *, PDRecord *);
+PetscErrorCode PDRecordAddRow(PDRecord *, const PDCurveRow *);
+PetscErrorCode PDRecordDestroy(PDRecord *);
+PetscErrorCode PDOutputPrepare(MPI_Comm, const PDScene *, PDRecord *);
+PetscErrorCode PDFieldsWrite(PDModel *, PDRecord *, PetscInt step, Vec u);
+PetscErrorCode PDFieldsFinish(PDModel *, PDRecord *);
+PetscErrorCode PDCurveWrite(MPI_Comm, const PDScene *, const PDRecord *);
+PetscErrorCode PDSummaryWrite(MPI_Comm, const PDModel *, const PDRecord *);
+PetscErrorCode PDCurvePlotWrite(MPI_Comm, const PDScene *, const PDRecord *);
+PetscErrorCode PDProgress(MPI_Comm, const PDScene *, const PDCurveRow *, PetscInt nsteps);
+PetscErrorCode PDFileCommit(MPI_Comm, const char *dir, const char *name);

@@ -1,0 +1,40 @@
+/* Model: the single bond loop (internal force, tangent), boundary conditions and measurements. */
+#pragma once
+#include "pd_lattice.h"
+#include <petscsnes.h>
+
+typedef struct {
+  const PDScene   *scene;
+  const PDLattice *lat;
+  const PDBonds   *bonds;
+  PetscInt         bs;        /* dofs per node: 2 or 3 */
+  PetscBool        linear;    /* elastic law with small kinematics: K u = f, one solve per step */
+  PetscReal        lambda;    /* current load factor */
+  PetscReal        bc_scale;  /* diagonal given to constrained dofs, of the order of a bond stiffness */
+  Vec              u_local;   /* ghosted work copy of the displacement */
+  Vec              f_local;   /* ghosted work vector for internal forces */
+  PetscReal       *ka, *kb;   /* per-bond tangent scalars; NULL while the tangent is constant */
+  Vec              f_ref;     /* external force at load factor 1 (global) */
+  Vec              u_ref;     /* prescribed displacement at load factor 1 (global, zero on free dofs) */
+  Vec              fixed;     /* 1 on constrained dofs, 0 elsewhere (global) */
+  PetscBool       *fixed_local; /* [bs*nlocal] constrained flags including ghosts */
+  Vec              load_pattern;  /* unit direction on the load region's nodes */
+  Vec              disp_pattern;  /* unit direction / count on the displacement region's nodes */
+  Vec              cmod_pattern;  /* -e on gauge point 1, +e on gauge point 2 */
+  PetscReal        load_sign_force; /* 1 when the load region applies a force (curve load = lambda |F|) */
+  PetscReal        force_magnitude;
+  PetscInt         nconstrained;    /* global constrained dofs */
+  PetscInt         nisolated;       /* global nodes without any bond, pinned */
+  PetscInt64       history_bytes;   /* per-bond history storage allocated (0 for elastic scenes) */
+  PetscInt         jacobian_assemblies;
+  PetscReal        t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
+} PDModel;
+
+PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
+PetscErrorCode PDModelDestroy(PDModel *);
+PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
+PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
+PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);
+PetscErrorCode PDModelJacobian(SNES, Vec u, Mat J, Mat P, void *);
+PetscErrorCode PDModelApplyBoundaryValues(PDModel *, PetscReal lambda, Vec u);
+PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod);

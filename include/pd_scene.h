@@ -1,0 +1,85 @@
+/* Scene: what is simulated, read from PETSc options and validated. No numerics here. */
+#pragma once
+#include <petscsys.h>
+#include <math.h>
+
+#define PD_NAN ((PetscReal)NAN) /* PETSc 3.18 has no NaN constant */
+
+#define PD_MAX_MATERIALS 8
+#define PD_MAX_NOTCHES   8
+#define PD_MAX_REGIONS   16
+#define PD_NAME_LEN      256
+
+typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
+typedef enum { PD_INFLUENCE_CONSTANT, PD_INFLUENCE_CONICAL, PD_INFLUENCE_QUARTIC } PDInfluence;
+typedef enum { PD_KINEMATICS_SMALL, PD_KINEMATICS_FINITE } PDKinematics;
+typedef enum { PD_LAW_ELASTIC } PDLawKind;
+typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
+typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
+
+extern const char *const PDModelKinds[];
+extern const char *const PDInfluences[];
+extern const char *const PDKinematicsNames[];
+extern const char *const PDLawNames[];
+extern const char *const PDShapes[];
+extern const char *const PDRegionKinds[];
+
+/* Geometry shared by materials and node regions. A box that has zero extent along an axis selects
+   the layer of nodes whose cells it cuts (nodes within dx/2 of that plane). */
+typedef struct {
+  PDShape   shape;
+  PetscReal box[6];    /* lo x,y,z then hi x,y,z */
+  PetscInt  axis;      /* cylinder axis 0,1,2 */
+  PetscReal center[3]; /* cylinder: a point on the axis */
+  PetscReal radius;    /* cylinder radius */
+} PDGeometry;
+
+typedef struct {
+  char       option[32]; /* option prefix, e.g. "-pd_material1", for messages */
+  PDGeometry where;      /* material 0 covers the whole domain */
+  PetscReal  E, rho;
+  PDLawKind  law;
+} PDMaterial;
+
+typedef struct {
+  char      option[32];
+  PetscReal box[6]; /* flat along exactly one axis: the notch plane */
+  PetscInt  normal; /* axis of the flat direction */
+} PDNotch;
+
+typedef struct {
+  char         option[32];
+  PDGeometry   where;
+  PDRegionKind kind;
+  PetscBool    dof[3];    /* support/displacement: constrained components */
+  PetscReal    vector[3]; /* displacement (m) or total force (N) at load factor 1 */
+} PDRegion;
+
+typedef struct {
+  char         name[PD_NAME_LEN];
+  char         output_dir[PETSC_MAX_PATH_LEN];
+  char         data_file[PETSC_MAX_PATH_LEN]; /* experimental curve overlaid on curve.svg */
+  PDModelKind  model;
+  PetscInt     dim; /* 2 or 3, derived from model */
+  PetscReal    thickness;
+  PetscReal    domain[6];
+  PetscReal    dx, horizon_ratio;
+  PDInfluence  influence;
+  PetscBool    partial_volume, surface_correction;
+  PDKinematics kinematics;
+  PetscInt     nmaterials, nnotches, nregions;
+  PDMaterial   material[PD_MAX_MATERIALS];
+  PDNotch      notch[PD_MAX_NOTCHES];
+  PDRegion     region[PD_MAX_REGIONS];
+  PetscInt     load_region;  /* region whose force or reaction is the curve's load */
+  PetscInt     disp_region;  /* region whose mean displacement is the curve's displacement */
+  PetscBool    has_cmod;
+  PetscReal    cmod[6]; /* two gauge points */
+  PetscInt     steps;   /* load steps */
+  PetscInt     fields_every;
+  PetscBool    progress;
+} PDScene;
+
+PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);
+PetscErrorCode PDSceneView(const PDScene *, PetscViewer);
+PetscBool      PDGeometryContains(const PDGeometry *, const PetscReal x[3], PetscReal dx, PetscInt dim);

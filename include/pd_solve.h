@@ -1,0 +1,6 @@
+/* Solvers: quasi-static path under load or displacement control. */
+#pragma once
+#include "pd_model.h"
+#include "pd_io.h"
+
+PetscErrorCode PDStaticRun(PDModel *, PDRecord *);

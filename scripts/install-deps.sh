@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Installs the Debian packages pdimplicit needs when any is missing. Run as root (CI is root);
+# otherwise prints the command to run.
+set -euo pipefail
+pkgs=(petsc-dev libhdf5-openmpi-dev hdf5-tools openmpi-bin cmake make gcc pkg-config time python3 python3-numpy python3-matplotlib)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+if [ "$(id -u)" -ne 0 ]; then
+  echo "pdimplicit needs: ${missing[*]}" >&2
+  echo "install them with: sudo apt-get update && sudo apt-get install -y ${missing[*]}" >&2
+  exit 1
+fi
+echo "installing: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -q
+apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,269 @@
+/* Bond list: cell-list neighbour search, notch cuts, partial volumes, surface correction, bond constants. */
+#include "pd_lattice.h"
+#include "pd_material.h"
+
+/* Cell list over the rank's local nodes with cells of one horizon: neighbours of a node lie in the
+   3^dim cells around its own, so the search is O(N). */
+typedef struct {
+  PetscInt  nc[3];
+  PetscReal lo[3], h;
+  PetscInt *start, *node;
+} CellList;
+
+static PetscInt CellIndex(const CellList *cl, const PetscReal x[3], PetscInt c[3])
+{
+  for (PetscInt a = 0; a < 3; a++) {
+    c[a] = (PetscInt)((x[a] - cl->lo[a]) / cl->h);
+    c[a] = PetscMin(PetscMax(c[a], 0), cl->nc[a] - 1);
+  }
+  return (c[0] * cl->nc[1] + c[1]) * cl->nc[2] + c[2];
+}
+
+static PetscErrorCode CellListCreate(const PDLattice *lat, CellList *cl)
+{
+  PetscReal hi[3];
+  PetscInt  ncells, c[3], *count;
+
+  PetscFunctionBeginUser;
+  cl->h = lat->horizon;
+  for (PetscInt a = 0; a < 3; a++) {
+    cl->lo[a] = PETSC_MAX_REAL;
+    hi[a]     = PETSC_MIN_REAL;
+  }
+  for (PetscInt l = 0; l < lat->nlocal; l++)
+    for (PetscInt a = 0; a < 3; a++) {
+      cl->lo[a] = PetscMin(cl->lo[a], lat->x[3 * l + a]);
+      hi[a]     = PetscMax(hi[a], lat->x[3 * l + a]);
+    }
+  for (PetscInt a = 0; a < 3; a++) cl->nc[a] = (PetscInt)((hi[a] - cl->lo[a]) / cl->h) + 1;
+  ncells = cl->nc[0] * cl->nc[1] * cl->nc[2];
+  PetscCall(PetscCalloc1(ncells + 1, &cl->start));
+  PetscCall(PetscMalloc1(lat->nlocal, &cl->node));
+  PetscCall(PetscMalloc1(ncells, &count));
+  for (PetscInt l = 0; l < lat->nlocal; l++) cl->start[CellIndex(cl, &lat->x[3 * l], c) + 1]++;
+  for (PetscInt i = 0; i < ncells; i++) {
+    cl->start[i + 1] += cl->start[i];
+    count[i] = 0;
+  }
+  for (PetscInt l = 0; l < lat->nlocal; l++) {
+    const PetscInt ci                  = CellIndex(cl, &lat->x[3 * l], c);
+    cl->node[cl->start[ci] + count[ci]++] = l;
+  }
+  PetscCall(PetscFree(count));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CellListDestroy(CellList *cl)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(cl->start));
+  PetscCall(PetscFree(cl->node));
+  PetscFunctionReturn(0);
+}
+
+/* A notch is a flat box; a bond is cut when its segment crosses the notch plane, or touches it with one
+   end, at a point inside the box. This rule reproduces the bond counts of Hobbs Table A.1. */
+static PetscBool NotchCuts(const PDNotch *n, const PetscReal p[3], const PetscReal q[3], PetscInt dim, PetscReal tol)
+{
+  const PetscInt  a  = n->normal;
+  const PetscReal c  = n->box[a];
+  PetscReal       dp = p[a] - c, dq = q[a] - c, t;
+
+  if (PetscAbsReal(dp) < tol) dp = 0;
+  if (PetscAbsReal(dq) < tol) dq = 0;
+  if (dp * dq > 0 || (dp == 0 && dq == 0)) return PETSC_FALSE;
+  t = dp / (dp - dq);
+  for (PetscInt k = 0; k < dim; k++) {
+    if (k == a) continue;
+    const PetscReal r = p[k] + t * (q[k] - p[k]);
+    if (r <= n->box[k] + tol || r >= n->box[3 + k] - tol) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+static PetscReal PartialVolumeFactor(const PDScene *sc, PetscReal len, PetscReal delta)
+{
+  if (!sc->partial_volume || len <= delta - 0.5 * sc->dx) return 1;
+  return (delta + 0.5 * sc->dx - len) / sc->dx;
+}
+
+typedef struct {
+  PetscInt *a, *b, n, cap;
+} PairList;
+
+static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b)
+{
+  PetscFunctionBeginUser;
+  if (pl->n == pl->cap) {
+    PetscInt newcap = PetscMax(1024, 2 * pl->cap);
+    PetscCall(PetscRealloc(sizeof(PetscInt) * newcap, &pl->a));
+    PetscCall(PetscRealloc(sizeof(PetscInt) * newcap, &pl->b));
+    pl->cap = newcap;
+  }
+  pl->a[pl->n] = a;
+  pl->b[pl->n] = b;
+  pl->n++;
+  PetscFunctionReturn(0);
+}
+
+/* Neighbour search: for every owned node, every node within the horizon that no notch separates. */
+static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local)
+{
+  CellList        cl;
+  const PetscReal d2 = lat->horizon * lat->horizon * (1 + 1e-10), tol = 1e-9 * sc->dx;
+  PetscInt        c[3], lo[3], hi[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(CellListCreate(lat, &cl));
+  *ncut_local = 0;
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    const PetscReal *xi = &lat->x[3 * i];
+    CellIndex(&cl, xi, c);
+    for (PetscInt a = 0; a < 3; a++) {
+      lo[a] = PetscMax(c[a] - 1, 0);
+      hi[a] = PetscMin(c[a] + 1, cl.nc[a] - 1);
+    }
+    for (PetscInt c0 = lo[0]; c0 <= hi[0]; c0++)
+      for (PetscInt c1 = lo[1]; c1 <= hi[1]; c1++)
+        for (PetscInt c2 = lo[2]; c2 <= hi[2]; c2++) {
+          const PetscInt cell = (c0 * cl.nc[1] + c1) * cl.nc[2] + c2;
+          for (PetscInt p = cl.start[cell]; p < cl.start[cell + 1]; p++) {
+            const PetscInt   j  = cl.node[p];
+            const PetscReal *xj = &lat->x[3 * j];
+            PetscReal        r2 = 0;
+            PetscBool        cut = PETSC_FALSE;
+            /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
+            if (j == i || (j < lat->nowned && lat->gid[j] < lat->gid[i])) continue;
+            for (PetscInt a = 0; a < 3; a++) r2 += (xj[a] - xi[a]) * (xj[a] - xi[a]);
+            if (r2 > d2) continue;
+            for (PetscInt k = 0; k < sc->nnotches && !cut; k++) cut = NotchCuts(&sc->notch[k], xi, xj, sc->dim, tol);
+            if (cut) {
+              if (lat->gid[i] < lat->gid[j]) (*ncut_local)++;
+              continue;
+            }
+            PetscCall(PairListPush(pl, i, j));
+          }
+        }
+  }
+  PetscCall(CellListDestroy(&cl));
+  PetscFunctionReturn(0);
+}
+
+/* Rows of the stiffness: for each owned node the bonds it belongs to, sorted by the neighbour's global id. */
+static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd)
+{
+  PetscInt *fill, *key;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(lat->nowned + 1, &bd->inc_start));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    bd->inc_start[bd->a[e] + 1]++;
+    if (bd->b[e] < lat->nowned) bd->inc_start[bd->b[e] + 1]++;
+  }
+  for (PetscInt i = 0; i < lat->nowned; i++) bd->inc_start[i + 1] += bd->inc_start[i];
+  PetscCall(PetscMalloc1(bd->inc_start[lat->nowned], &bd->inc_bond));
+  PetscCall(PetscCalloc1(lat->nowned, &fill));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    bd->inc_bond[bd->inc_start[bd->a[e]] + fill[bd->a[e]]++] = e;
+    if (bd->b[e] < lat->nowned) bd->inc_bond[bd->inc_start[bd->b[e]] + fill[bd->b[e]]++] = e;
+  }
+  PetscCall(PetscMalloc1(PetscMax(1, bd->inc_start[lat->nowned]), &key));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    const PetscInt s = bd->inc_start[i], n = bd->inc_start[i + 1] - s;
+    for (PetscInt p = 0; p < n; p++) {
+      const PetscInt e = bd->inc_bond[s + p];
+      key[p]           = lat->gid[bd->a[e] == i ? bd->b[e] : bd->a[e]];
+    }
+    PetscCall(PetscSortIntWithArray(n, key, bd->inc_bond + s));
+  }
+  PetscCall(PetscFree(key));
+  PetscCall(PetscFree(fill));
+  PetscFunctionReturn(0);
+}
+
+/* Volume-method surface correction (Eq. 4.11): V_i = sum_j beta_ij V_j over the family of i, shared with
+   neighbouring ranks through a ghosted vector, lambda_ij = 2 V0 / (V_i + V_j). */
+static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta)
+{
+  Vec             vol, vloc;
+  PetscScalar    *v;
+  const PetscReal delta = lat->horizon;
+  const PetscReal V0    = sc->dim == 3 ? 4.0 / 3.0 * PETSC_PI * delta * delta * delta : PETSC_PI * delta * delta * sc->thickness;
+  PetscReal       lmin = PETSC_MAX_REAL, lmax = PETSC_MIN_REAL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDLatticeCreateGhostVec(lat, 1, &vol));
+  PetscCall(VecGetArray(vol, &v));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    v[i] = 0;
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) v[i] += beta[bd->inc_bond[p]] * lat->cell_volume;
+  }
+  PetscCall(VecRestoreArray(vol, &v));
+  PetscCall(VecGhostUpdateBegin(vol, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(vol, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(vol, &vloc));
+  PetscCall(VecGetArray(vloc, &v));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscReal Vsum = PetscRealPart(v[bd->a[e]] + v[bd->b[e]]);
+    const PetscReal lam  = Vsum > 0 ? 2 * V0 / Vsum : 1;
+    bd->coef[e] *= lam;
+    lmin = PetscMin(lmin, lam);
+    lmax = PetscMax(lmax, lam);
+  }
+  PetscCall(VecRestoreArray(vloc, &v));
+  PetscCall(VecGhostRestoreLocalForm(vol, &vloc));
+  PetscCall(VecDestroy(&vol));
+  PetscCall(MPIU_Allreduce(&lmin, &bd->lambda_min, 1, MPIU_REAL, MPIU_MIN, lat->comm));
+  PetscCall(MPIU_Allreduce(&lmax, &bd->lambda_max, 1, MPIU_REAL, MPIU_MAX, lat->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PDBonds *bd)
+{
+  PairList   pl = {NULL, NULL, 0, 0};
+  PetscInt   ncut_local, nonce = 0;
+  PetscReal *beta;
+  PetscReal  c0[PD_MAX_MATERIALS];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(bd, sizeof *bd));
+  PetscCall(FindPairs(sc, lat, &pl, &ncut_local));
+  bd->nbonds = pl.n;
+  bd->a      = pl.a;
+  bd->b      = pl.b;
+  PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &bd->coef, PetscMax(1, bd->nbonds), &bd->material));
+  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &beta));
+  for (PetscInt m = 0; m < sc->nmaterials; m++) c0[m] = PDMicromodulus(sc, sc->material[m].E);
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt   i = bd->a[e], j = bd->b[e], mi = lat->material[i], mj = lat->material[j];
+    const PetscReal *xi = &lat->x[3 * i], *xj = &lat->x[3 * j];
+    PetscReal        len = 0;
+    PetscInt         m;
+    for (PetscInt a = 0; a < 3; a++) len += (xj[a] - xi[a]) * (xj[a] - xi[a]);
+    len = PetscSqrtReal(len);
+    /* a bond joining two materials takes the softer one: the interface is no stronger than its weaker side */
+    m              = sc->material[mi].E <= sc->material[mj].E ? mi : mj;
+    bd->material[e] = m;
+    beta[e]        = PartialVolumeFactor(sc, len, lat->horizon);
+    bd->coef[e]    = c0[m] * PDInfluenceValue(sc->influence, len, lat->horizon) * beta[e] * lat->cell_volume * lat->cell_volume;
+    if (j < lat->nowned || lat->gid[i] < lat->gid[j]) nonce++;
+  }
+  PetscCall(BuildIncidence(lat, bd));
+  bd->lambda_min = bd->lambda_max = 1;
+  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta));
+  PetscCall(PetscFree(beta));
+  PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDBondsDestroy(PDBonds *bd)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(bd->a));
+  PetscCall(PetscFree(bd->b));
+  PetscCall(PetscFree2(bd->coef, bd->material));
+  PetscCall(PetscFree(bd->inc_start));
+  PetscCall(PetscFree(bd->inc_bond));
+  PetscFunctionReturn(0);
+}

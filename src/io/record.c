@@ -1,0 +1,94 @@
+/* The run record (curve rows, counters, timings) and the output directory. Every file is written under
+   a temporary name and renamed once complete, so a reader never sees half a file. */
+#include "pd_io.h"
+#include <errno.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+
+PetscErrorCode PDRecordCreate(MPI_Comm comm, const PDScene *sc, PDRecord *rec)
+{
+  PetscLogDouble t;
+
+  PetscFunctionBeginUser;
+  (void)comm;
+  PetscCall(PetscMemzero(rec, sizeof *rec));
+  PetscCall(PetscStrncpy(rec->dir, sc->output_dir, sizeof rec->dir));
+  PetscCall(PetscTime(&t));
+  rec->t_start = t;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDRecordAddRow(PDRecord *rec, const PDCurveRow *row)
+{
+  PetscFunctionBeginUser;
+  if (rec->nrows == rec->capacity) {
+    rec->capacity = PetscMax(64, 2 * rec->capacity);
+    PetscCall(PetscRealloc(sizeof(PDCurveRow) * rec->capacity, &rec->rows));
+  }
+  rec->rows[rec->nrows++] = *row;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDRecordDestroy(PDRecord *rec)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(rec->rows));
+  PetscCall(PetscFree(rec->field_steps));
+  PetscCall(PetscViewerDestroy(&rec->h5));
+  PetscFunctionReturn(0);
+}
+
+/* mkdir -p on rank 0; every rank learns the outcome. */
+PetscErrorCode PDOutputPrepare(MPI_Comm comm, const PDScene *sc, PDRecord *rec)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  (void)sc;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    char path[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscStrncpy(path, rec->dir, sizeof path));
+    for (char *p = path + 1; *p && !err; p++)
+      if (*p == '/') {
+        *p = '\0';
+        if (mkdir(path, 0755) && errno != EEXIST) err = errno;
+        *p = '/';
+      }
+    if (!err && mkdir(path, 0755) && errno != EEXIST) err = errno;
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Option -pd_output_dir: cannot create '%s': %s", rec->dir, strerror(err));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDFileCommit(MPI_Comm comm, const char *dir, const char *name)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    char tmp[PETSC_MAX_PATH_LEN], fin[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(tmp, sizeof tmp, "%s/%s.tmp", dir, name));
+    PetscCall(PetscSNPrintf(fin, sizeof fin, "%s/%s", dir, name));
+    if (rename(tmp, fin)) err = errno;
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "Cannot rename %s/%s.tmp: %s", dir, name, strerror(err));
+  PetscFunctionReturn(0);
+}
+
+/* One line on stderr, rewritten in place on a terminal. */
+PetscErrorCode PDProgress(MPI_Comm comm, const PDScene *sc, const PDCurveRow *row, PetscInt nsteps)
+{
+  PetscFunctionBeginUser;
+  if (!sc->progress) PetscFunctionReturn(0);
+  PetscCall(PetscFPrintf(comm, PETSC_STDERR, "\r[%s] step %" PetscInt_FMT "/%" PetscInt_FMT "  lambda %.4f  load %.5g N  disp %.5g m  newton %" PetscInt_FMT "  ksp %" PetscInt_FMT "  %.1f s%s",
+                         sc->name, row->step, nsteps, (double)row->lambda, (double)row->load, (double)row->disp, row->newton_its, row->ksp_its,
+                         (double)row->wall, row->step == nsteps ? "\n" : ""));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,79 @@
+static const char help[] = "pdimplicit: implicit quasi-static bond-based peridynamics for concrete.\n"
+                           "Usage: pdimplicit -options_file scene.opts [-pd_* overrides] [PETSc SNES/KSP/PC options]\n"
+                           "Every -pd_ option is listed, with its default, by -help.\n";
+
+#include "pd_solve.h"
+
+/* Everything a scene can get wrong is found here, before any output exists. */
+static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, PDBonds *bonds, PDModel *model, PDRecord *rec, PetscBool *dry_run)
+{
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDSceneCreateFromOptions(comm, sc));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-pd_dry_run", dry_run, NULL));
+  PetscCall(PDRecordCreate(comm, sc, rec));
+  PetscCall(PetscTime(&t0));
+  PetscCall(PDLatticeCreate(comm, sc, lat));
+  PetscCall(PDBondsCreate(sc, lat, bonds));
+  PetscCall(PDModelCreate(sc, lat, bonds, model));
+  PetscCall(PetscTime(&t1));
+  rec->t_setup = t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  PDScene        sc;
+  PDLattice      lat;
+  PDBonds        bonds;
+  PDModel        model;
+  PDRecord       rec;
+  PetscLogDouble t0, t1;
+  PetscBool      dry_run = PETSC_FALSE, converged;
+  MPI_Comm       comm;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, help));
+  comm = PETSC_COMM_WORLD;
+  {
+    PetscErrorCode ierr;
+    /* bad input: one clear line on stderr and a non-zero exit, not a traceback */
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = BuildProblem(comm, &sc, &lat, &bonds, &model, &rec, &dry_run);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr) {
+      const char *text;
+      char       *specific;
+      PetscCall(PetscErrorMessage(ierr, &text, &specific));
+      PetscCall(PetscFPrintf(comm, PETSC_STDERR, "pdimplicit: error: %s\n", specific && specific[0] ? specific : text));
+      PetscCall(PetscFinalize());
+      return 2;
+    }
+  }
+  PetscCall(PDSceneView(&sc, PETSC_VIEWER_STDOUT_(comm)));
+  PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " nodes, %" PetscInt_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT " constrained dofs, set-up %.3f s\n",
+                        lat.nglobal, bonds.nbonds_global, bonds.ncut, model.nconstrained, (double)rec.t_setup));
+  PetscCall(PetscPrintf(comm, "  effects: elasticity%s\n", sc.kinematics == PD_KINEMATICS_FINITE ? ", geometric_nonlinearity" : ""));
+  if (model.nisolated) PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " nodes have no bond; their dofs are pinned\n", model.nisolated));
+  PetscCall(PDOutputPrepare(comm, &sc, &rec));
+  if (!dry_run) PetscCall(PDStaticRun(&model, &rec));
+  else PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));
+  converged = dry_run ? PETSC_TRUE : rec.converged;
+  rec.converged = converged;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PDFieldsFinish(&model, &rec));
+  PetscCall(PDCurveWrite(comm, &sc, &rec));
+  PetscCall(PDCurvePlotWrite(comm, &sc, &rec));
+  PetscCall(PetscTime(&t1));
+  rec.t_output += t1 - t0;
+  PetscCall(PDSummaryWrite(comm, &model, &rec));
+  PetscCall(PetscPrintf(comm, "  %s: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton and %" PetscInt_FMT " KSP iterations; results in %s\n", rec.status, rec.steps,
+                        rec.newton_its, rec.ksp_its, rec.dir));
+  if (!converged) PetscCall(PetscFPrintf(comm, PETSC_STDERR, "pdimplicit: run stopped early: %s\n", rec.status));
+  PetscCall(PDRecordDestroy(&rec));
+  PetscCall(PDModelDestroy(&model));
+  PetscCall(PDBondsDestroy(&bonds));
+  PetscCall(PDLatticeDestroy(&lat));
+  PetscCall(PetscFinalize());
+  return converged ? 0 : 1;
+}

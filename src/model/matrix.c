@@ -1,0 +1,72 @@
+/* The stiffness matrix: block size = dofs per node, preallocated exactly from the bond incidence,
+   with the rigid-body near-null space attached for algebraic multigrid. */
+#include "pd_model.h"
+#include <petscpc.h>
+
+PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J)
+{
+  const PDLattice *lat = m->lat;
+  const PDBonds   *bd  = m->bonds;
+  const PetscInt   bs  = m->bs;
+  PetscInt        *dnnz, *onnz, *dnnzu, *onnzu;
+  Vec              coords;
+  PetscScalar     *c;
+  MatNullSpace     nsp;
+  PetscBool        sbaij;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc4(lat->nowned, &dnnz, lat->nowned, &onnz, lat->nowned, &dnnzu, lat->nowned, &onnzu));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    dnnz[i] = dnnzu[i] = 1;
+    onnz[i] = onnzu[i] = 0;
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
+      const PetscInt e = bd->inc_bond[p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
+      const PetscBool upper = lat->gid[j] > lat->gid[i];
+      if (j < lat->nowned) {
+        dnnz[i]++;
+        dnnzu[i] += upper;
+      } else {
+        onnz[i]++;
+        onnzu[i] += upper;
+      }
+    }
+  }
+  PetscCall(MatCreate(lat->comm, J));
+  PetscCall(MatSetSizes(*J, bs * lat->nowned, bs * lat->nowned, PETSC_DETERMINE, PETSC_DETERMINE));
+  PetscCall(MatSetBlockSize(*J, bs));
+  /* Symmetric block storage moves the fewest bytes per mat-vec and is the fastest with CG + ICC
+     (docs/benchmarks/elastic.md). GAMG in PETSc 3.18 builds its graph from AIJ only, so choosing it
+     switches the default storage to AIJ. -pd_mat_type overrides either choice. */
+  {
+    char      pctype[64] = "";
+    PetscBool gamg       = PETSC_FALSE;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, NULL));
+    PetscCall(PetscStrcmp(pctype, PCGAMG, &gamg));
+    PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
+  }
+  PetscCall(MatSetOptionsPrefix(*J, "pd_"));
+  PetscCall(MatSetFromOptions(*J)); /* -pd_mat_type aij|baij|sbaij */
+  PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));
+  PetscCall(PetscFree4(dnnz, onnz, dnnzu, onnzu));
+  PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  PetscCall(MatSetOption(*J, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)*J, &sbaij, MATSBAIJ, MATSEQSBAIJ, MATMPISBAIJ, ""));
+  if (sbaij) PetscCall(MatSetOption(*J, MAT_IGNORE_LOWER_TRIANGULAR, PETSC_TRUE));
+  /* dF_i/du_j = dF_j/du_i for every bond, and the elimination of constrained dofs is symmetric */
+  PetscCall(MatSetOption(*J, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(*J, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+
+  PetscCall(VecCreate(lat->comm, &coords));
+  PetscCall(VecSetSizes(coords, bs * lat->nowned, PETSC_DECIDE));
+  PetscCall(VecSetBlockSize(coords, bs));
+  PetscCall(VecSetFromOptions(coords));
+  PetscCall(VecGetArray(coords, &c));
+  for (PetscInt i = 0; i < lat->nowned; i++)
+    for (PetscInt a = 0; a < bs; a++) c[bs * i + a] = lat->x[3 * i + a];
+  PetscCall(VecRestoreArray(coords, &c));
+  PetscCall(MatNullSpaceCreateRigidBody(coords, &nsp));
+  PetscCall(MatSetNearNullSpace(*J, nsp));
+  PetscCall(MatNullSpaceDestroy(&nsp));
+  PetscCall(VecDestroy(&coords));
+  PetscFunctionReturn(0);
+}

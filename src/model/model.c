@@ -1,0 +1,380 @@
+/* Model set-up: boundary conditions from node regions, measurement patterns, residual and Jacobian. */
+#include "pd_model.h"
+#include "kernel.h"
+
+static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCreate(lat->comm, v));
+  PetscCall(VecSetSizes(*v, bs * lat->nowned, PETSC_DECIDE));
+  PetscCall(VecSetBlockSize(*v, bs));
+  PetscCall(VecSetFromOptions(*v));
+  PetscFunctionReturn(0);
+}
+
+/* Constrained dofs: supports, prescribed displacements and nodes that have no bond at all. Two regions
+   constraining the same dof, or a force on a constrained dof, are conflicting input. */
+static PetscErrorCode SetupConstraints(PDModel *m)
+{
+  const PDScene   *sc  = m->scene;
+  const PDLattice *lat = m->lat;
+  const PetscInt   bs  = m->bs;
+  PetscInt        *owner, conflict[2] = {PETSC_MAX_INT, PETSC_MAX_INT}, gconflict[2], nfix = 0, niso = 0;
+  PetscInt         count[PD_MAX_REGIONS], gcount[PD_MAX_REGIONS];
+  Vec              fixl;
+  PetscScalar     *fx, *ur, *fr;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(bs * lat->nowned, &owner));
+  for (PetscInt k = 0; k < bs * lat->nowned; k++) owner[k] = -1;
+  PetscCall(PetscArrayzero(count, PD_MAX_REGIONS));
+  PetscCall(VecGetArray(m->u_ref, &ur));
+  PetscCall(VecGetArray(m->f_ref, &fr));
+  for (PetscInt r = 0; r < sc->nregions; r++) {
+    const PDRegion *reg = &sc->region[r];
+    for (PetscInt i = 0; i < lat->nowned; i++)
+      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc->dx, sc->dim)) count[r]++;
+  }
+  PetscCall(MPIU_Allreduce(count, gcount, PD_MAX_REGIONS, MPIU_INT, MPI_SUM, lat->comm));
+  for (PetscInt r = 0; r < sc->nregions; r++)
+    PetscCheck(gcount[r] > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the region contains no nodes", sc->region[r].option,
+               sc->region[r].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
+  for (PetscInt r = 0; r < sc->nregions; r++) {
+    const PDRegion *reg = &sc->region[r];
+    if (reg->kind == PD_REGION_MONITOR) continue;
+    for (PetscInt i = 0; i < lat->nowned; i++) {
+      if (!PDGeometryContains(&reg->where, &lat->x[3 * i], sc->dx, sc->dim)) continue;
+      for (PetscInt a = 0; a < bs; a++) {
+        const PetscInt k = bs * i + a;
+        if (reg->kind == PD_REGION_FORCE) {
+          fr[k] += reg->vector[a] / gcount[r];
+          if (reg->vector[a] != 0 && owner[k] >= 0 && r * PD_MAX_REGIONS + owner[k] < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
+            conflict[0] = r;
+            conflict[1] = owner[k];
+          }
+          continue;
+        }
+        if (!reg->dof[a]) continue;
+        if (owner[k] >= 0 && r * PD_MAX_REGIONS + owner[k] < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
+          conflict[0] = r;
+          conflict[1] = owner[k];
+        }
+        owner[k] = r;
+        ur[k]    = reg->kind == PD_REGION_DISPLACEMENT ? reg->vector[a] : 0;
+      }
+    }
+  }
+  /* a force region applied on a dof that a later region constrains */
+  for (PetscInt r = 0; r < sc->nregions; r++) {
+    const PDRegion *reg = &sc->region[r];
+    if (reg->kind != PD_REGION_FORCE) continue;
+    for (PetscInt i = 0; i < lat->nowned; i++)
+      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc->dx, sc->dim))
+        for (PetscInt a = 0; a < bs; a++) {
+          const PetscInt k = bs * i + a;
+          if (reg->vector[a] != 0 && owner[k] > r && owner[k] * PD_MAX_REGIONS + r < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
+            conflict[0] = owner[k];
+            conflict[1] = r;
+          }
+        }
+  }
+  PetscCall(MPIU_Allreduce(conflict, gconflict, 2, MPIU_INT, MPI_MIN, lat->comm));
+  PetscCheck(gconflict[0] == PETSC_MAX_INT, lat->comm, PETSC_ERR_USER_INPUT,
+             "Options %s and %s: conflicting boundary conditions on the same degree of freedom", sc->region[gconflict[0]].option,
+             sc->region[gconflict[1]].option);
+  PetscCall(VecRestoreArray(m->u_ref, &ur));
+  PetscCall(VecRestoreArray(m->f_ref, &fr));
+
+  /* flags travel to the ghosts through a ghosted vector, so every rank masks the same columns */
+  PetscCall(PDLatticeCreateGhostVec(lat, bs, &fixl));
+  PetscCall(VecGetArray(fixl, &fx));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    const PetscBool isolated = m->bonds->inc_start[i + 1] == m->bonds->inc_start[i];
+    if (isolated) niso++;
+    for (PetscInt a = 0; a < bs; a++) {
+      fx[bs * i + a] = (owner[bs * i + a] >= 0 || isolated) ? 1.0 : 0.0;
+      if (fx[bs * i + a] != 0.0) nfix++;
+    }
+  }
+  PetscCall(VecRestoreArray(fixl, &fx));
+  PetscCall(VecCopy(fixl, m->fixed)); /* same layout of owned entries */
+  PetscCall(VecGhostUpdateBegin(fixl, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(fixl, INSERT_VALUES, SCATTER_FORWARD));
+  {
+    Vec loc;
+    PetscCall(VecGhostGetLocalForm(fixl, &loc));
+    PetscCall(VecGetArray(loc, &fx));
+    PetscCall(PetscMalloc1(bs * lat->nlocal, &m->fixed_local));
+    for (PetscInt k = 0; k < bs * lat->nlocal; k++) m->fixed_local[k] = PetscRealPart(fx[k]) != 0 ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(VecRestoreArray(loc, &fx));
+    PetscCall(VecGhostRestoreLocalForm(fixl, &loc));
+  }
+  PetscCall(VecDestroy(&fixl));
+  PetscCall(MPIU_Allreduce(&nfix, &m->nconstrained, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscCall(MPIU_Allreduce(&niso, &m->nisolated, 1, MPIU_INT, MPI_SUM, lat->comm));
+  if (m->nisolated) PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " nodes have no bond and are pinned\n", m->nisolated));
+  PetscCall(PetscFree(owner));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SetupPatterns(PDModel *m)
+{
+  const PDScene   *sc   = m->scene;
+  const PDLattice *lat  = m->lat;
+  const PDRegion  *load = &sc->region[sc->load_region], *dreg = &sc->region[sc->disp_region];
+  const PetscInt   bs   = m->bs;
+  PetscReal        dir[3], norm = 0;
+  PetscInt         n = 0, gn;
+  PetscScalar     *lp, *dp;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < 3; a++) norm += load->vector[a] * load->vector[a];
+  norm = PetscSqrtReal(norm);
+  for (PetscInt a = 0; a < 3; a++) dir[a] = load->vector[a] / norm;
+  m->load_sign_force  = load->kind == PD_REGION_FORCE ? 1 : 0;
+  m->force_magnitude  = norm;
+  PetscCall(VecGetArray(m->load_pattern, &lp));
+  PetscCall(VecGetArray(m->disp_pattern, &dp));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    if (PDGeometryContains(&load->where, &lat->x[3 * i], sc->dx, sc->dim))
+      for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[a];
+    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc->dx, sc->dim)) n++;
+  }
+  PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
+  for (PetscInt i = 0; i < lat->nowned; i++)
+    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc->dx, sc->dim))
+      for (PetscInt a = 0; a < bs; a++) dp[bs * i + a] = dir[a] / gn;
+  PetscCall(VecRestoreArray(m->load_pattern, &lp));
+  PetscCall(VecRestoreArray(m->disp_pattern, &dp));
+  if (sc->has_cmod) {
+    const PetscInt g1 = PDLatticeNearestNode(lat, &sc->cmod[0]), g2 = PDLatticeNearestNode(lat, &sc->cmod[3]);
+    PetscReal      e[3] = {0, 0, 0}, len = 0;
+    PetscScalar    v[3];
+    PetscCheck(g1 != g2, lat->comm, PETSC_ERR_USER_INPUT, "Option -pd_cmod_points: both points fall on the same node");
+    /* gauge direction from the nodes' positions, computed from lattice indices on every rank */
+    for (PetscInt a = 0; a < lat->dim; a++) {
+      const PetscInt  stride[3] = {lat->n[1] * lat->n[2], lat->n[2], 1};
+      const PetscReal i1 = (PetscReal)((g1 / stride[a]) % lat->n[a]), i2 = (PetscReal)((g2 / stride[a]) % lat->n[a]);
+      e[a]                      = (i2 - i1) * lat->dx;
+      len += e[a] * e[a];
+    }
+    for (PetscInt a = 0; a < bs; a++) v[a] = e[a] / PetscSqrtReal(len);
+    if (g2 >= lat->gid_start && g2 < lat->gid_start + lat->nowned) PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g2, v, INSERT_VALUES));
+    for (PetscInt a = 0; a < bs; a++) v[a] = -v[a];
+    if (g1 >= lat->gid_start && g1 < lat->gid_start + lat->nowned) PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g1, v, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(m->cmod_pattern));
+    PetscCall(VecAssemblyEnd(m->cmod_pattern));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Diagonal for constrained dofs: the mean diagonal of the bond stiffness, so that the eliminated
+   rows do not spoil the conditioning. */
+static PetscErrorCode SetupScale(PDModel *m)
+{
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  PetscReal        sum = 0, gsum;
+  PetscInt         n = lat->nowned, gn;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscReal *p = &lat->x[3 * bd->a[e]], *q = &lat->x[3 * bd->b[e]];
+    const PetscReal  L = PetscSqrtReal((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
+    sum += (bd->b[e] < lat->nowned ? 2.0 : 1.0) * bd->coef[e] / L / m->bs;
+  }
+  PetscCall(MPIU_Allreduce(&sum, &gsum, 1, MPIU_REAL, MPI_SUM, lat->comm));
+  PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
+  m->bc_scale = gsum > 0 ? gsum / gn : 1.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBonds *bd, PDModel *m)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(m, sizeof *m));
+  m->scene  = sc;
+  m->lat    = lat;
+  m->bonds  = bd;
+  m->bs     = sc->dim;
+  m->linear = sc->kinematics == PD_KINEMATICS_SMALL ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt k = 0; k < sc->nmaterials; k++)
+    if (sc->material[k].law != PD_LAW_ELASTIC) m->linear = PETSC_FALSE;
+  PetscCall(PDLatticeCreateGhostVec(lat, m->bs, &m->u_local));
+  PetscCall(VecDuplicate(m->u_local, &m->f_local));
+  PetscCall(CreateGlobalVec(lat, m->bs, &m->f_ref));
+  PetscCall(VecDuplicate(m->f_ref, &m->u_ref));
+  PetscCall(VecDuplicate(m->f_ref, &m->fixed));
+  PetscCall(VecDuplicate(m->f_ref, &m->load_pattern));
+  PetscCall(VecDuplicate(m->f_ref, &m->disp_pattern));
+  PetscCall(VecDuplicate(m->f_ref, &m->cmod_pattern));
+  PetscCall(VecZeroEntries(m->f_ref));
+  PetscCall(VecZeroEntries(m->u_ref));
+  PetscCall(VecZeroEntries(m->load_pattern));
+  PetscCall(VecZeroEntries(m->disp_pattern));
+  PetscCall(VecZeroEntries(m->cmod_pattern));
+  PetscCall(SetupConstraints(m));
+  PetscCall(SetupPatterns(m));
+  PetscCall(SetupScale(m));
+  if (sc->kinematics == PD_KINEMATICS_FINITE) {
+    PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &m->ka, PetscMax(1, bd->nbonds), &m->kb));
+  }
+  m->history_bytes = 0; /* elastic bonds carry no history */
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelDestroy(PDModel *m)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecDestroy(&m->u_local));
+  PetscCall(VecDestroy(&m->f_local));
+  PetscCall(VecDestroy(&m->f_ref));
+  PetscCall(VecDestroy(&m->u_ref));
+  PetscCall(VecDestroy(&m->fixed));
+  PetscCall(VecDestroy(&m->load_pattern));
+  PetscCall(VecDestroy(&m->disp_pattern));
+  PetscCall(VecDestroy(&m->cmod_pattern));
+  PetscCall(PetscFree(m->fixed_local));
+  PetscCall(PetscFree2(m->ka, m->kb));
+  PetscFunctionReturn(0);
+}
+
+/* Copies the owned displacement into the ghosted work vector and fetches the ghosts. */
+static PetscErrorCode ScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(u, m->u_local));
+  PetscCall(VecGhostUpdateBegin(m->u_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(m->u_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(m->u_local, loc));
+  PetscCall(VecGetArrayRead(*loc, ul));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(*loc, ul));
+  PetscCall(VecGhostRestoreLocalForm(m->u_local, loc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F)
+{
+  const PetscScalar *ul;
+  PetscScalar       *fl, *f;
+  Vec                uloc, floc;
+
+  PetscFunctionBeginUser;
+  PetscCall(ScatterToLocal(m, u, &ul, &uloc));
+  PetscCall(VecGhostGetLocalForm(m->f_local, &floc));
+  PetscCall(VecGetArray(floc, &fl));
+  PetscCall(PDModelInternalForceLocal(m, ul, fl));
+  PetscCall(VecGetArray(F, &f));
+  PetscCall(PetscArraycpy(f, fl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
+  PetscCall(VecRestoreArray(F, &f));
+  PetscCall(VecRestoreArray(floc, &fl));
+  PetscCall(VecGhostRestoreLocalForm(m->f_local, &floc));
+  PetscCall(RestoreLocal(m, &ul, &uloc));
+  PetscFunctionReturn(0);
+}
+
+/* R = F_int(u) - lambda F_ref on free dofs, bc_scale (u - lambda u_ref) on constrained ones. */
+PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx)
+{
+  PDModel           *m = (PDModel *)ctx;
+  const PetscScalar *uu, *fr, *ur, *fx;
+  PetscScalar       *r;
+  PetscLogDouble     t0, t1;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  PetscCall(PetscTime(&t0));
+  PetscCall(PDModelInternalForce(m, u, R));
+  PetscCall(VecGetArray(R, &r));
+  PetscCall(VecGetArrayRead(u, &uu));
+  PetscCall(VecGetArrayRead(m->f_ref, &fr));
+  PetscCall(VecGetArrayRead(m->u_ref, &ur));
+  PetscCall(VecGetArrayRead(m->fixed, &fx));
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++)
+    r[k] = PetscRealPart(fx[k]) != 0 ? m->bc_scale * (uu[k] - m->lambda * ur[k]) : r[k] - m->lambda * fr[k];
+  PetscCall(VecRestoreArrayRead(m->fixed, &fx));
+  PetscCall(VecRestoreArrayRead(m->u_ref, &ur));
+  PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
+  PetscCall(VecRestoreArrayRead(u, &uu));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscCall(PetscTime(&t1));
+  m->t_residual += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx)
+{
+  PDModel           *m = (PDModel *)ctx;
+  const PetscScalar *ul;
+  Vec                uloc;
+  PetscLogDouble     t0, t1;
+
+  PetscFunctionBeginUser;
+  (void)snes;
+  /* a linear model's stiffness never changes: assemble it once, and the preconditioner is kept too */
+  if (m->linear && m->jacobian_assemblies > 0) PetscFunctionReturn(0);
+  PetscCall(PetscTime(&t0));
+  PetscCall(ScatterToLocal(m, u, &ul, &uloc));
+  if (m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb));
+  PetscCall(PDModelAssembleRows(m, ul, m->ka, m->kb, P));
+  PetscCall(RestoreLocal(m, &ul, &uloc));
+  if (J != P) {
+    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  }
+  m->jacobian_assemblies++;
+  PetscCall(PetscTime(&t1));
+  m->t_assembly += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/* Sets the constrained dofs of u to their prescribed values at load factor lambda. */
+PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u)
+{
+  const PetscScalar *ur, *fx;
+  PetscScalar       *uu;
+
+  PetscFunctionBeginUser;
+  m->lambda = lambda;
+  PetscCall(VecGetArray(u, &uu));
+  PetscCall(VecGetArrayRead(m->u_ref, &ur));
+  PetscCall(VecGetArrayRead(m->fixed, &fx));
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++)
+    if (PetscRealPart(fx[k]) != 0) uu[k] = lambda * ur[k];
+  PetscCall(VecRestoreArrayRead(m->fixed, &fx));
+  PetscCall(VecRestoreArrayRead(m->u_ref, &ur));
+  PetscCall(VecRestoreArray(u, &uu));
+  PetscFunctionReturn(0);
+}
+
+/* Curve quantities: load (applied force, or reaction of a displacement region along its direction),
+   mean displacement of the displacement region along the load direction, and the CMOD gauge. */
+PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod)
+{
+  PetscScalar v;
+
+  PetscFunctionBeginUser;
+  if (m->load_sign_force) *load = m->lambda * m->force_magnitude;
+  else {
+    Vec F;
+    PetscCall(VecDuplicate(u, &F));
+    PetscCall(PDModelInternalForce(m, u, F));
+    PetscCall(VecDot(F, m->load_pattern, &v));
+    *load = PetscRealPart(v);
+    PetscCall(VecDestroy(&F));
+  }
+  PetscCall(VecDot(u, m->disp_pattern, &v));
+  *disp = PetscRealPart(v);
+  *cmod = PD_NAN;
+  if (m->scene->has_cmod) {
+    PetscCall(VecDot(u, m->cmod_pattern, &v));
+    *cmod = PetscRealPart(v);
+  }
+  PetscFunctionReturn(0);
+}

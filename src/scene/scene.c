@@ -1,0 +1,343 @@
+/* Reads a scene from the PETSc options database and validates it before anything is built. */
+#include "pd_scene.h"
+#include "option_values.h"
+#include <petscviewer.h>
+#include <string.h>
+
+const char *const PDModelKinds[]      = {"3d", "plane_stress", "plane_strain"};
+const char *const PDInfluences[]      = {"constant", "conical", "quartic"};
+const char *const PDKinematicsNames[] = {"small", "finite"};
+const char *const PDLawNames[]        = {"elastic"};
+const char *const PDShapes[]          = {"box", "cylinder"};
+const char *const PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
+static const char *const PDModes[]    = {"implicit", "explicit"};
+
+/* 2D scenes give boxes as x0,y0,x1,y1 and points as x,y; store them in 3D form with z = 0. */
+static PetscErrorCode ReadBox(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, const char *help, PetscReal box[6],
+                              PetscBool *set)
+{
+  PetscReal v[6];
+  PetscInt  n = 2 * sc->dim;
+
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < 6; i++) v[i] = 0;
+  for (PetscInt a = 0; a < sc->dim; a++) {
+    v[a]           = box[a];
+    v[sc->dim + a] = box[3 + a];
+  }
+  PetscCall(PDOptionRealArray(PetscOptionsObject, opt, help, v, &n, set));
+  if (*set) {
+    PetscCheck(n == 2 * sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected %" PetscInt_FMT " numbers (lower corner, upper corner), got %" PetscInt_FMT,
+               opt, 2 * sc->dim, n);
+    for (PetscInt a = 0; a < 3; a++) {
+      box[a]     = a < sc->dim ? PetscMin(v[a], v[sc->dim + a]) : 0;
+      box[3 + a] = a < sc->dim ? PetscMax(v[a], v[sc->dim + a]) : 0;
+      PetscCheck(a >= sc->dim || v[a] <= v[sc->dim + a], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+                 "Option %s: lower corner exceeds upper corner along axis %c", opt, (char)('x' + a));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadDofs(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, PetscBool dof[3], PetscBool *set)
+{
+  char buf[64] = "";
+
+  PetscFunctionBeginUser;
+  PetscCall(PDOptionString(PetscOptionsObject, opt, "Constrained components, e.g. x,z", buf, sizeof buf, set));
+  if (!*set) PetscFunctionReturn(0);
+  dof[0] = dof[1] = dof[2] = PETSC_FALSE;
+  for (const char *p = buf; *p; p++) {
+    if (*p == ',' || *p == ' ') continue;
+    PetscInt a = (*p == 'x' || *p == 'X') ? 0 : (*p == 'y' || *p == 'Y') ? 1 : (*p == 'z' || *p == 'Z') ? 2 : -1;
+    PetscCheck(a >= 0 && a < sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: unknown component '%c' in '%s' (use %s)", opt, *p, buf,
+               sc->dim == 3 ? "x, y, z" : "x, y");
+    dof[a] = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadVector(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, const char *help, PetscReal vec[3],
+                                 PetscBool *set)
+{
+  PetscInt n = sc->dim;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDOptionRealArray(PetscOptionsObject, opt, help, vec, &n, set));
+  PetscCheck(!*set || n == sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected %" PetscInt_FMT " components, got %" PetscInt_FMT, opt,
+             sc->dim, n);
+  if (sc->dim == 2) vec[2] = 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscBool BoxesOverlap(const PetscReal a[6], const PetscReal b[6], PetscInt dim, PetscReal tol)
+{
+  for (PetscInt k = 0; k < dim; k++)
+    if (a[k] > b[3 + k] + tol || b[k] > a[3 + k] + tol) return PETSC_FALSE;
+  return PETSC_TRUE;
+}
+
+static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k)
+{
+  PDMaterial *m = &sc->material[k];
+  char        opt[64];
+  PetscBool   set;
+  PetscInt    law = m->law;
+
+  PetscFunctionBeginUser;
+  if (k == 0) {
+    PetscCall(PetscStrncpy(m->option, "-pd", sizeof m->option));
+    m->where.shape = PD_SHAPE_BOX;
+    PetscCall(PetscArraycpy(m->where.box, sc->domain, 6));
+  } else {
+    PetscCall(PetscSNPrintf(m->option, sizeof m->option, "-pd_material%" PetscInt_FMT, k));
+    *m = sc->material[0];
+    PetscCall(PetscSNPrintf(m->option, sizeof m->option, "-pd_material%" PetscInt_FMT, k));
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", m->option));
+    PetscCall(ReadBox(PetscOptionsObject, sc, opt, "Region of this material (later materials win where boxes overlap)", m->where.box, &set));
+    PetscCheck(BoxesOverlap(m->where.box, sc->domain, sc->dim, 0), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: box lies outside the domain -pd_domain",
+               opt);
+    law = m->law;
+  }
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_E", m->option));
+  PetscCall(PDOptionReal(PetscOptionsObject, opt, "Young's modulus (Pa)", &m->E, NULL));
+  PetscCheck(m->E > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: Young's modulus must be positive, got %g", opt, (double)m->E);
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_rho", m->option));
+  PetscCall(PDOptionReal(PetscOptionsObject, opt, "Density (kg/m^3)", &m->rho, NULL));
+  PetscCheck(m->rho > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: density must be positive, got %g", opt, (double)m->rho);
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_law", m->option));
+  PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bond law", PDLawNames, (PetscInt)(sizeof PDLawNames / sizeof *PDLawNames), &law, NULL));
+  m->law = (PDLawKind)law;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadNotch(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k)
+{
+  PDNotch  *n = &sc->notch[k];
+  char      opt[64];
+  PetscBool set;
+  PetscInt  nflat = 0;
+  PetscReal tol   = 1e-9 * sc->dx;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(n->option, sizeof n->option, "-pd_notch%" PetscInt_FMT, k));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", n->option));
+  PetscCall(ReadBox(PetscOptionsObject, sc, opt, "Notch: a box flat along one axis; bonds crossing or touching it are cut", n->box, &set));
+  for (PetscInt a = 0; a < sc->dim; a++)
+    if (n->box[3 + a] - n->box[a] <= tol) {
+      n->normal = a;
+      nflat++;
+    }
+  PetscCheck(nflat == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a notch box must be flat (zero width) along exactly one axis, %" PetscInt_FMT " are flat",
+             opt, nflat);
+  PetscCheck(BoxesOverlap(n->box, sc->domain, sc->dim, tol), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: notch lies outside the domain -pd_domain", opt);
+  {
+    PetscBool covers = PETSC_TRUE;
+    for (PetscInt a = 0; a < sc->dim; a++)
+      if (a != n->normal && (n->box[a] > sc->domain[a] + tol || n->box[3 + a] < sc->domain[3 + a] - tol)) covers = PETSC_FALSE;
+    PetscCheck(!covers, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: the notch spans the whole cross-section and would split the body in two", opt);
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k)
+{
+  PDRegion *r = &sc->region[k];
+  char      opt[64], opt2[64];
+  PetscBool set_box, set_cyl, set, set_vec;
+  PetscInt  kind = PD_REGION_MONITOR, axis = 2, n = 4;
+  PetscReal cyl[4] = {0, 0, 0, 0};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(r->option, sizeof r->option, "-pd_region%" PetscInt_FMT, k));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", r->option));
+  PetscCall(ReadBox(PetscOptionsObject, sc, opt, "Node region: box (flat along an axis selects one layer of nodes)", r->where.box, &set_box));
+  PetscCall(PetscSNPrintf(opt2, sizeof opt2, "%s_cylinder", r->option));
+  PetscCall(PDOptionRealArray(PetscOptionsObject, opt2, "Node region: cylinder as centre x,y,z and radius (axis from _axis)", cyl, &n, &set_cyl));
+  PetscCheck(set_box != set_cyl, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Options %s and %s: give exactly one of them", opt, opt2);
+  if (set_box) {
+    r->where.shape = PD_SHAPE_BOX;
+    PetscCheck(BoxesOverlap(r->where.box, sc->domain, sc->dim, 0.5 * sc->dx), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: region lies outside the domain -pd_domain", opt);
+  } else {
+    PetscCheck(n == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected 4 numbers (x,y,z,radius), got %" PetscInt_FMT, opt2, n);
+    PetscCheck(cyl[3] > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: radius must be positive, got %g", opt2, (double)cyl[3]);
+    r->where.shape = PD_SHAPE_CYLINDER;
+    PetscCall(PetscArraycpy(r->where.center, cyl, 3));
+    r->where.radius = cyl[3];
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_axis", r->option));
+    PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Cylinder axis", (const char *const[]){"x", "y", "z"}, 3, &axis, NULL));
+    PetscCheck(sc->dim == 3 || axis == 2, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a 2D scene's cylinder (a disc) has axis z", opt);
+    r->where.axis = axis;
+    for (PetscInt a = 0; a < sc->dim; a++)
+      if (a != axis)
+        PetscCheck(cyl[a] + cyl[3] >= sc->domain[a] && cyl[a] - cyl[3] <= sc->domain[3 + a], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+                   "Option %s: region lies outside the domain -pd_domain", opt2);
+  }
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_kind", r->option));
+  PetscCall(PDOptionEnum(PetscOptionsObject, opt, "What the region does", PDRegionKinds, 4, &kind, &set));
+  PetscCheck(set, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required (support, displacement, force or monitor)", opt);
+  r->kind = (PDRegionKind)kind;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_dofs", r->option));
+  PetscCall(ReadDofs(PetscOptionsObject, sc, opt, r->dof, &set));
+  if (r->kind == PD_REGION_SUPPORT || r->kind == PD_REGION_DISPLACEMENT)
+    PetscCheck(set && (r->dof[0] || r->dof[1] || r->dof[2]), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a %s region", opt,
+               PDRegionKinds[r->kind]);
+  else PetscCheck(!set, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a %s region constrains no components", opt, PDRegionKinds[r->kind]);
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_%s", r->option, r->kind == PD_REGION_FORCE ? "force" : "displacement"));
+  if (r->kind == PD_REGION_FORCE || r->kind == PD_REGION_DISPLACEMENT) {
+    PetscCall(ReadVector(PetscOptionsObject, sc, opt, r->kind == PD_REGION_FORCE ? "Total force (N) at load factor 1, spread evenly over the nodes" : "Prescribed displacement (m) at load factor 1", r->vector, &set_vec));
+    PetscCheck(set_vec, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a %s region", opt, PDRegionKinds[r->kind]);
+    PetscCheck(r->vector[0] != 0 || r->vector[1] != 0 || r->vector[2] != 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: the vector is zero", opt);
+    for (PetscInt a = 0; a < 3 && r->kind == PD_REGION_DISPLACEMENT; a++)
+      PetscCheck(r->dof[a] || r->vector[a] == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: component %c is non-zero but not listed in %s_dofs", opt,
+                 (char)('x' + a), r->option);
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode HasOption(const char *fmt, PetscInt k, PetscBool *has)
+{
+  char opt[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, fmt, k));
+  PetscCall(PetscOptionsHasName(NULL, NULL, opt, has));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
+{
+  PetscBool set, has;
+  PetscInt  model = PD_MODEL_3D, influence = PD_INFLUENCE_CONSTANT, kin = PD_KINEMATICS_SMALL, mode = 0, n;
+  PetscReal dom[6];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(sc, sizeof *sc));
+  PetscCall(PetscStrncpy(sc->name, "scene", sizeof sc->name));
+  sc->horizon_ratio      = PETSC_PI;
+  sc->partial_volume     = PETSC_TRUE;
+  sc->surface_correction = PETSC_TRUE;
+  sc->thickness          = 1.0;
+  sc->steps              = 1;
+  sc->fields_every       = 0;
+  sc->load_region        = -1;
+  sc->disp_region        = -1;
+  sc->material[0].E      = 30e9;
+  sc->material[0].rho    = 2400;
+  sc->material[0].law    = PD_LAW_ELASTIC;
+
+  PetscOptionsBegin(comm, NULL, "pdimplicit scene", NULL);
+  PetscCall(PDOptionString(PetscOptionsObject, "-pd_name", "Scene name (names the default output directory)", sc->name, sizeof sc->name, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_mode", "Solution path: implicit (static) or explicit (dynamic relaxation)", PDModes, 2, &mode, NULL));
+  PetscCheck(mode == 0, comm, PETSC_ERR_SUP, "Option -pd_mode: value 'explicit' is not available in this version");
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_model", "Spatial model", PDModelKinds, 3, &model, NULL));
+  sc->model = (PDModelKind)model;
+  sc->dim   = sc->model == PD_MODEL_3D ? 3 : 2;
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_thickness", "Thickness of a 2D model (m)", &sc->thickness, NULL));
+  PetscCheck(sc->thickness > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_thickness: must be positive, got %g", (double)sc->thickness);
+  n = 2 * sc->dim;
+  PetscCall(PetscArrayzero(dom, 6));
+  PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_domain", "Body box: lower corner then upper corner (m)", dom, &n, &set));
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Option -pd_domain is required: give a scene with -options_file scene.opts");
+  PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT, "Option -pd_domain: expected %" PetscInt_FMT " numbers for a %" PetscInt_FMT "D model, got %" PetscInt_FMT,
+             2 * sc->dim, sc->dim, n);
+  for (PetscInt a = 0; a < 3; a++) {
+    sc->domain[a]     = a < sc->dim ? dom[a] : 0;
+    sc->domain[3 + a] = a < sc->dim ? dom[sc->dim + a] : 0;
+    PetscCheck(a >= sc->dim || sc->domain[3 + a] > sc->domain[a], comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_domain: upper corner must exceed lower corner along %c", (char)('x' + a));
+  }
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dx", "Grid spacing (m)", &sc->dx, &set));
+  PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx is required");
+  PetscCheck(sc->dx > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: grid spacing must be positive, got %g", (double)sc->dx);
+  for (PetscInt a = 0; a < sc->dim; a++)
+    PetscCheck(sc->dx <= sc->domain[3 + a] - sc->domain[a] + 1e-12, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: %g exceeds the domain size along %c",
+               (double)sc->dx, (char)('x' + a));
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_horizon_ratio", "Horizon over grid spacing, m = delta/dx", &sc->horizon_ratio, NULL));
+  PetscCheck(sc->horizon_ratio >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_horizon_ratio: must be at least 1 (horizon no smaller than the grid spacing), got %g",
+             (double)sc->horizon_ratio);
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_influence", "Influence function", PDInfluences, 3, &influence, NULL));
+  sc->influence = (PDInfluence)influence;
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_partial_volume", "PA-PDLAMMPS partial volumes at the horizon edge", &sc->partial_volume, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_surface_correction", "Volume-method surface correction", &sc->surface_correction, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_kinematics", "Bond stretch: small (linearised) or finite (exact)", PDKinematicsNames, 2, &kin, NULL));
+  sc->kinematics = (PDKinematics)kin;
+
+  sc->nmaterials = 1;
+  PetscCall(ReadMaterial(PetscOptionsObject, sc, 0));
+  for (PetscInt k = 1; k < PD_MAX_MATERIALS; k++) {
+    PetscCall(HasOption("-pd_material%" PetscInt_FMT "_box", k, &has));
+    if (!has) break;
+    PetscCall(ReadMaterial(PetscOptionsObject, sc, k));
+    sc->nmaterials++;
+  }
+  for (PetscInt k = 0; k < PD_MAX_NOTCHES; k++) {
+    PetscCall(HasOption("-pd_notch%" PetscInt_FMT "_box", k, &has));
+    if (!has) break;
+    PetscCall(ReadNotch(PetscOptionsObject, sc, k));
+    sc->nnotches++;
+  }
+  for (PetscInt k = 0; k < PD_MAX_REGIONS; k++) {
+    PetscBool hb, hc;
+    PetscCall(HasOption("-pd_region%" PetscInt_FMT "_box", k, &hb));
+    PetscCall(HasOption("-pd_region%" PetscInt_FMT "_cylinder", k, &hc));
+    if (!hb && !hc) break;
+    PetscCall(ReadRegion(PetscOptionsObject, sc, k));
+    sc->nregions++;
+  }
+  PetscCheck(sc->nregions > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_region0_box: the scene defines no node regions (supports and loads)");
+  for (PetscInt k = 0; k < sc->nregions && sc->load_region < 0; k++)
+    if (sc->region[k].kind == PD_REGION_FORCE || sc->region[k].kind == PD_REGION_DISPLACEMENT) sc->load_region = k;
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_load_region", "Region whose applied force or reaction is the curve's load", &sc->load_region, NULL));
+  PetscCheck(sc->load_region >= 0 && sc->load_region < sc->nregions && (sc->region[sc->load_region].kind == PD_REGION_FORCE || sc->region[sc->load_region].kind == PD_REGION_DISPLACEMENT),
+             comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: %" PetscInt_FMT " is not a force or displacement region", sc->load_region);
+  sc->disp_region = sc->load_region;
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_disp_region", "Region whose mean displacement along the load direction is the curve's displacement",
+                        &sc->disp_region, NULL));
+  PetscCheck(sc->disp_region >= 0 && sc->disp_region < sc->nregions, comm, PETSC_ERR_USER_INPUT, "Option -pd_disp_region: %" PetscInt_FMT " is not a region",
+             sc->disp_region);
+  {
+    PetscReal pts[6] = {0, 0, 0, 0, 0, 0};
+    n                = 2 * sc->dim;
+    PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_cmod_points", "CMOD gauge: two points; opening measured along the line joining their nearest nodes", pts,
+                                &n, &sc->has_cmod));
+    if (sc->has_cmod) {
+      PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT, "Option -pd_cmod_points: expected %" PetscInt_FMT " numbers, got %" PetscInt_FMT, 2 * sc->dim, n);
+      for (PetscInt p = 0; p < 2; p++)
+        for (PetscInt a = 0; a < 3; a++) {
+          sc->cmod[3 * p + a] = a < sc->dim ? pts[sc->dim * p + a] : 0;
+          PetscCheck(a >= sc->dim || (sc->cmod[3 * p + a] >= sc->domain[a] && sc->cmod[3 * p + a] <= sc->domain[3 + a]), comm, PETSC_ERR_USER_INPUT,
+                     "Option -pd_cmod_points: point %" PetscInt_FMT " lies outside the domain", p + 1);
+        }
+    }
+  }
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_steps", "Number of load steps", &sc->steps, NULL));
+  PetscCheck(sc->steps >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_steps: must be at least 1, got %" PetscInt_FMT, sc->steps);
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_fields_every", "Write fields every N steps (0: last step only)", &sc->fields_every, NULL));
+  PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT, sc->fields_every);
+  PetscCall(PetscSNPrintf(sc->output_dir, sizeof sc->output_dir, "output/%s", sc->name));
+  PetscCall(PDOptionString(PetscOptionsObject, "-pd_output_dir", "Output directory", sc->output_dir, sizeof sc->output_dir, NULL));
+  PetscCall(PDOptionString(PetscOptionsObject, "-pd_data_file", "Experimental CSV (cmod_mm, load mean/min/max kN) overlaid on curve.svg", sc->data_file,
+                           sizeof sc->data_file, NULL));
+  sc->progress = PETSC_FALSE;
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_progress", "One-line progress display on stderr", &sc->progress, NULL));
+  PetscOptionsEnd();
+  if (sc->data_file[0]) {
+    PetscBool exists;
+    PetscCall(PetscTestFile(sc->data_file, 'r', &exists));
+    PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Option -pd_data_file: cannot read '%s'", sc->data_file);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDSceneView(const PDScene *sc, PetscViewer v)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(v, "Scene %s: %s, domain [%g %g %g] to [%g %g %g] m, dx %g m, horizon %g dx, influence %s\n", sc->name,
+                                   PDModelKinds[sc->model], (double)sc->domain[0], (double)sc->domain[1], (double)sc->domain[2], (double)sc->domain[3],
+                                   (double)sc->domain[4], (double)sc->domain[5], (double)sc->dx, (double)sc->horizon_ratio, PDInfluences[sc->influence]));
+  PetscCall(PetscViewerASCIIPrintf(v, "  %" PetscInt_FMT " materials, %" PetscInt_FMT " notches, %" PetscInt_FMT " regions, %" PetscInt_FMT " steps, kinematics %s\n",
+                                   sc->nmaterials, sc->nnotches, sc->nregions, sc->steps, PDKinematicsNames[sc->kinematics]));
+  PetscFunctionReturn(0);
+}
