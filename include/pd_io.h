@@ -18,7 +18,7 @@ typedef struct {
   PetscInt    nfield_steps;
   PetscInt   *field_steps; /* steps whose fields were written */
   PetscViewer h5;          /* open HDF5 viewer on the temporary fields file */
-  PetscReal   matrix_bytes;
+  PetscReal   matrix_nonzeros; /* stored scalar entries of the stiffness */
   char        solver[128]; /* snes/ksp/pc types actually used */
   char        dir[PETSC_MAX_PATH_LEN];
 } PDRecord;

@@ -18,6 +18,7 @@ typedef struct {
   Vec              u_ref;     /* prescribed displacement at load factor 1 (global, zero on free dofs) */
   Vec              fixed;     /* 1 on constrained dofs, 0 elsewhere (global) */
   PetscBool       *fixed_local; /* [bs*nlocal] constrained flags including ghosts */
+  PetscReal       *uref_local;  /* [bs*nlocal] prescribed values at load factor 1 including ghosts */
   Vec              load_pattern;  /* unit direction on the load region's nodes */
   Vec              disp_pattern;  /* unit direction / count on the displacement region's nodes */
   Vec              cmod_pattern;  /* -e on gauge point 1, +e on gauge point 2 */

@@ -13,7 +13,7 @@ PetscErrorCode PDCurveWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *re
   PetscCall(PetscFPrintf(comm, fp, "step,lambda,load_N,disp_m,cmod_m,broken_bonds,newton_its,ksp_its,wall_s\n"));
   for (PetscInt k = 0; k < rec->nrows; k++) {
     const PDCurveRow *r = &rec->rows[k];
-    PetscCall(PetscFPrintf(comm, fp, "%" PetscInt_FMT ",%.10g,%.10g,%.10g,%.10g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.4f\n", r->step,
+    PetscCall(PetscFPrintf(comm, fp, "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.4f\n", r->step,
                            (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its, r->ksp_its,
                            (double)r->wall));
   }

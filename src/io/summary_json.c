@@ -73,8 +73,8 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
   PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n", (double)rec->t_setup,
                          (double)m->t_assembly, (double)rec->t_solve, (double)rec->t_output));
-  PetscCall(PetscFPrintf(comm, fp, "  \"memory\": {\"history_bytes\": %" PetscInt64_FMT ", \"matrix_bytes\": %.0f, \"peak_rss_bytes\": %.0f},\n", m->history_bytes,
-                         (double)rec->matrix_bytes, (double)mem));
+  PetscCall(PetscFPrintf(comm, fp, "  \"memory\": {\"history_bytes\": %" PetscInt64_FMT ", \"matrix_nonzeros\": %.0f, \"peak_rss_bytes\": %.0f},\n", m->history_bytes,
+                         (double)rec->matrix_nonzeros, (double)mem));
   PetscCall(PetscFPrintf(comm, fp, "  \"converged\": %s,\n  \"status\": \"%s\"\n}\n", rec->converged ? "true" : "false", rec->status));
   PetscCall(PetscFClose(comm, fp));
   PetscCall(PDFileCommit(comm, rec->dir, "summary.json"));

@@ -109,6 +109,19 @@ static PetscErrorCode SetupConstraints(PDModel *m)
     PetscCall(VecRestoreArray(loc, &fx));
     PetscCall(VecGhostRestoreLocalForm(fixl, &loc));
   }
+  /* prescribed values of local and ghost dofs, for the residual's lifting of the constraints */
+  PetscCall(VecCopy(m->u_ref, fixl));
+  PetscCall(VecGhostUpdateBegin(fixl, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(fixl, INSERT_VALUES, SCATTER_FORWARD));
+  {
+    Vec loc;
+    PetscCall(VecGhostGetLocalForm(fixl, &loc));
+    PetscCall(VecGetArray(loc, &fx));
+    PetscCall(PetscMalloc1(bs * lat->nlocal, &m->uref_local));
+    for (PetscInt k = 0; k < bs * lat->nlocal; k++) m->uref_local[k] = PetscRealPart(fx[k]);
+    PetscCall(VecRestoreArray(loc, &fx));
+    PetscCall(VecGhostRestoreLocalForm(fixl, &loc));
+  }
   PetscCall(VecDestroy(&fixl));
   PetscCall(MPIU_Allreduce(&nfix, &m->nconstrained, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&niso, &m->nisolated, 1, MPIU_INT, MPI_SUM, lat->comm));
@@ -235,18 +248,27 @@ PetscErrorCode PDModelDestroy(PDModel *m)
   PetscCall(VecDestroy(&m->disp_pattern));
   PetscCall(VecDestroy(&m->cmod_pattern));
   PetscCall(PetscFree(m->fixed_local));
+  PetscCall(PetscFree(m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
   PetscFunctionReturn(0);
 }
 
-/* Copies the owned displacement into the ghosted work vector and fetches the ghosts. */
+/* Copies the owned displacement into the ghosted work vector and fetches the ghosts. Constrained
+   dofs take their prescribed values whatever u holds (lifting), so the internal force of free dofs
+   does not depend on constrained ones: the Jacobian with eliminated columns is then exact. */
 static PetscErrorCode ScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc)
 {
+  PetscScalar *w;
+
   PetscFunctionBeginUser;
   PetscCall(VecCopy(u, m->u_local));
   PetscCall(VecGhostUpdateBegin(m->u_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(m->u_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostGetLocalForm(m->u_local, loc));
+  PetscCall(VecGetArray(*loc, &w));
+  for (PetscInt k = 0; k < m->bs * m->lat->nlocal; k++)
+    if (m->fixed_local[k]) w[k] = m->lambda * m->uref_local[k];
+  PetscCall(VecRestoreArray(*loc, &w));
   PetscCall(VecGetArrayRead(*loc, ul));
   PetscFunctionReturn(0);
 }

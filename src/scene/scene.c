@@ -206,6 +206,32 @@ static PetscErrorCode HasOption(const char *fmt, PetscInt k, PetscBool *has)
   PetscFunctionReturn(0);
 }
 
+/* A relative data path in a scene is taken relative to the directory of the options file, so that a
+   scene runs from any working directory. */
+static PetscErrorCode ResolveNextToOptionsFile(char *path, size_t len)
+{
+  int    argc;
+  char **argv;
+  char   dir[PETSC_MAX_PATH_LEN] = "", joined[PETSC_MAX_PATH_LEN];
+
+  PetscFunctionBeginUser;
+  if (path[0] == '/') PetscFunctionReturn(0);
+  PetscCall(PetscGetArgs(&argc, &argv));
+  for (int i = 1; i + 1 < argc; i++) {
+    PetscBool is;
+    PetscCall(PetscStrcmp(argv[i], "-options_file", &is));
+    if (is) PetscCall(PetscStrncpy(dir, argv[i + 1], sizeof dir));
+  }
+  {
+    char *slash = strrchr(dir, '/');
+    if (!slash) PetscFunctionReturn(0);
+    slash[1] = '\0';
+  }
+  PetscCall(PetscSNPrintf(joined, sizeof joined, "%s%s", dir, path));
+  PetscCall(PetscStrncpy(path, joined, len));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
 {
   PetscBool set, has;
@@ -318,13 +344,14 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT, sc->fields_every);
   PetscCall(PetscSNPrintf(sc->output_dir, sizeof sc->output_dir, "output/%s", sc->name));
   PetscCall(PDOptionString(PetscOptionsObject, "-pd_output_dir", "Output directory", sc->output_dir, sizeof sc->output_dir, NULL));
-  PetscCall(PDOptionString(PetscOptionsObject, "-pd_data_file", "Experimental CSV (cmod_mm, load mean/min/max kN) overlaid on curve.svg", sc->data_file,
+  PetscCall(PDOptionString(PetscOptionsObject, "-pd_data_file", "Experimental CSV (cmod_mm, load mean/min/max kN) overlaid on curve.svg; relative to the options file", sc->data_file,
                            sizeof sc->data_file, NULL));
   sc->progress = PETSC_FALSE;
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_progress", "One-line progress display on stderr", &sc->progress, NULL));
   PetscOptionsEnd();
   if (sc->data_file[0]) {
     PetscBool exists;
+    PetscCall(ResolveNextToOptionsFile(sc->data_file, sizeof sc->data_file));
     PetscCall(PetscTestFile(sc->data_file, 'r', &exists));
     PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Option -pd_data_file: cannot read '%s'", sc->data_file);
   }

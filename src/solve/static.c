@@ -91,7 +91,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec)
     KSPType     kt;
     PCType      pt;
     PetscCall(MatGetInfo(J, MAT_GLOBAL_SUM, &info));
-    rec->matrix_bytes = info.memory;
+    rec->matrix_nonzeros = info.nz_allocated;
     PetscCall(SNESGetType(snes, &st));
     PetscCall(SNESGetKSP(snes, &ksp));
     PetscCall(KSPGetType(ksp, &kt));

@@ -1,0 +1,75 @@
+"""Helpers shared by the scene regression tests: run pdimplicit, read its outputs, assert with context."""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
+MPIEXEC = os.environ.get("MPIEXEC", "mpiexec")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+
+
+def scene(name):
+    return os.path.join(ROOT, "options", name + ".opts")
+
+
+class Run:
+    def __init__(self, outdir, proc):
+        self.dir = outdir
+        self.proc = proc
+        self.returncode = proc.returncode
+        self.stdout = proc.stdout
+        self.stderr = proc.stderr
+
+    @property
+    def summary(self):
+        with open(os.path.join(self.dir, "summary.json")) as f:
+            return json.load(f)
+
+    @property
+    def curve(self):
+        with open(os.path.join(self.dir, "curve.csv")) as f:
+            return [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
+
+    def fields(self, step=None):
+        import h5py
+        import numpy as np
+        with h5py.File(os.path.join(self.dir, "fields.h5"), "r") as f:
+            g = f["fields"]
+            steps = sorted(k for k in g if k.startswith("displacement_"))
+            key = steps[-1] if step is None else "displacement_%06d" % step
+            return np.array(g["coordinates"]), np.array(g[key]), np.array(g[key.replace("displacement", "damage")])
+
+
+def run(scene_name, *args, ranks=1, expect_ok=True, outdir=None):
+    """Runs a scene with extra options; returns a Run. Output goes to a fresh directory."""
+    outdir = outdir or tempfile.mkdtemp(prefix="pdtest_")
+    cmd = [EXE]
+    if scene_name:
+        cmd += ["-options_file", scene(scene_name)]
+    cmd += ["-pd_output_dir", outdir] + [str(a) for a in args]
+    if ranks > 1:
+        cmd = [MPIEXEC, "-n", str(ranks)] + cmd
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
+    r = Run(outdir, proc)
+    if expect_ok and proc.returncode != 0:
+        fail("run failed (%d): %s\n%s\n%s" % (proc.returncode, " ".join(cmd), proc.stdout[-3000:], proc.stderr[-3000:]))
+    return r
+
+
+def fail(msg):
+    print("FAIL: " + msg)
+    sys.exit(1)
+
+
+def check(cond, msg):
+    print(("ok   " if cond else "FAIL ") + msg)
+    if not cond:
+        sys.exit(1)
+
+
+def rel(a, b):
+    return abs(a - b) / abs(b)

@@ -1,0 +1,49 @@
+"""Bad input: each case exits non-zero before any solve, names the offending option in its message,
+and leaves no output behind."""
+import os
+import shutil
+import tempfile
+
+from pdtest import check, run
+
+CASES = [
+    # (scene, extra options, text the message must contain)
+    ("cantilever", ["-pd_E", "-30e9"], "-pd_E"),
+    ("cantilever", ["-pd_E", "0"], "-pd_E"),
+    ("cantilever", ["-pd_dx", "-0.01"], "-pd_dx"),
+    ("cantilever", ["-pd_dx", "0"], "-pd_dx"),
+    ("cantilever", ["-pd_horizon_ratio", "0.8"], "-pd_horizon_ratio"),
+    ("cantilever", ["-pd_region1_box", "2,0,0,2.1,0.1,0.1"], "-pd_region1_box"),
+    ("cantilever", ["-pd_region0_box", "0.001,0.001,0.001,0.002,0.002,0.002"], "-pd_region0_box"),  # between nodes: empty
+    ("cantilever", ["-pd_influence", "gaussian"], "-pd_influence"),
+    ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.1"], "-pd_notch0_box"),  # cuts the whole section
+    ("cantilever", ["-pd_dx", "abc"], "-pd_dx"),
+    ("cantilever", ["-pd_region1_force", "0,zero,-1e4"], "-pd_region1_force"),
+    ("cantilever", ["-pd_region2_box", "-0.08,0,0,0,0.1,0.1", "-pd_region2_kind", "displacement", "-pd_region2_dofs", "z",
+                    "-pd_region2_displacement", "0,0,1e-3"], "-pd_region2"),  # conflicts with the clamp
+    ("cantilever", ["-pd_law", "plastic"], "-pd_law"),
+    ("cantilever", ["-pd_steps", "0"], "-pd_steps"),
+    ("cantilever", ["-pd_region1_kind", "pull"], "-pd_region1_kind"),
+    ("cantilever", ["-pd_rho", "-1"], "-pd_rho"),
+    ("gregoire_d50_hn", ["-pd_cmod_points", "0.0775,0.025,0,0.3,0.025,0"], "-pd_cmod_points"),
+    ("gregoire_d50_hn", ["-pd_data_file", "missing.csv"], "-pd_data_file"),
+]
+
+
+def main():
+    for name, args, needle in CASES:
+        out = os.path.join(tempfile.mkdtemp(prefix="pdbad_"), "out")
+        r = run(name, *args, expect_ok=False, outdir=out)
+        msg = (r.stdout + r.stderr).strip().splitlines()
+        first = next((l for l in msg if needle in l), msg[-1] if msg else "")
+        check(r.returncode != 0 and needle in r.stderr and not os.path.exists(out),
+              "%-14s %-45s exit %d, no output, says: %s" % (name, " ".join(args)[:45], r.returncode, first.strip()[:110]))
+        shutil.rmtree(os.path.dirname(out))
+    # a missing options file is reported by PETSc with the file name
+    out = os.path.join(tempfile.mkdtemp(prefix="pdbad_"), "out")
+    r = run(None, "-options_file", "no_such_scene.opts", expect_ok=False, outdir=out)
+    check(r.returncode != 0 and "no_such_scene.opts" in r.stderr and not os.path.exists(out), "missing options file: exit %d" % r.returncode)
+
+
+if __name__ == "__main__":
+    main()
