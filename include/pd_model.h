@@ -26,6 +26,7 @@ typedef struct {
   PetscReal        force_magnitude;
   PetscInt         nconstrained;    /* global constrained dofs */
   PetscInt         nisolated;       /* global nodes without any bond, pinned */
+  PetscInt         nzero_dofs;      /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
   PetscInt64       history_bytes;   /* per-bond history storage allocated (0 for elastic scenes) */
   PetscInt         jacobian_assemblies;
   PetscReal        t_assembly, t_residual; /* seconds spent in the Jacobian and residual */

@@ -2,7 +2,7 @@
 # Installs the Debian packages pdimplicit needs when any is missing. Run as root (CI is root);
 # otherwise prints the command to run.
 set -euo pipefail
-pkgs=(petsc-dev libhdf5-openmpi-dev hdf5-tools openmpi-bin cmake make gcc pkg-config time python3 python3-numpy python3-matplotlib)
+pkgs=(petsc-dev libhdf5-openmpi-dev hdf5-tools openmpi-bin cmake make gcc pkg-config time python3 python3-numpy python3-matplotlib python3-h5py)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

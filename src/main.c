@@ -54,7 +54,8 @@ int main(int argc, char **argv)
   PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " nodes, %" PetscInt_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT " constrained dofs, set-up %.3f s\n",
                         lat.nglobal, bonds.nbonds_global, bonds.ncut, model.nconstrained, (double)rec.t_setup));
   PetscCall(PetscPrintf(comm, "  effects: elasticity%s\n", sc.kinematics == PD_KINEMATICS_FINITE ? ", geometric_nonlinearity" : ""));
-  if (model.nisolated) PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " nodes have no bond; their dofs are pinned\n", model.nisolated));
+  if (model.nzero_dofs)
+    PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " dofs without stiffness pinned (%" PetscInt_FMT " nodes without any bond)\n", model.nzero_dofs, model.nisolated));
   PetscCall(PDOutputPrepare(comm, &sc, &rec));
   if (!dry_run) PetscCall(PDStaticRun(&model, &rec));
   else PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));

@@ -64,7 +64,7 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          (double)sc->horizon_ratio, PDInfluences[sc->influence], PDKinematicsNames[sc->kinematics]));
   PetscCall(PetscFPrintf(comm, fp, "  \"bonds_cut_by_notches\": %" PetscInt_FMT ",\n  \"surface_correction_range\": [%.6g, %.6g],\n", m->bonds->ncut,
                          (double)m->bonds->lambda_min, (double)m->bonds->lambda_max));
-  PetscCall(PetscFPrintf(comm, fp, "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"isolated_nodes_pinned\": %" PetscInt_FMT ",\n", m->nconstrained, m->nisolated));
+  PetscCall(PetscFPrintf(comm, fp, "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n", m->nconstrained, m->nzero_dofs, m->nisolated));
   PetscCall(PetscFPrintf(comm, fp, "  \"solver\": \"%s\",\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT ",\n", rec->solver,
                          m->linear ? "true" : "false", m->jacobian_assemblies));
   PetscCall(PetscFPrintf(comm, fp, "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n", rec->steps,

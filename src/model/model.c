@@ -12,6 +12,20 @@ static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v)
   PetscFunctionReturn(0);
 }
 
+/* Diagonal of a node's 3x3 stiffness block, sum over its bonds of (c/|xi|) e e^T. */
+static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3])
+{
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
+    const PetscInt   e = bd->inc_bond[p];
+    const PetscReal *xa = &lat->x[3 * bd->a[e]], *xb = &lat->x[3 * bd->b[e]];
+    PetscReal        L2 = 0;
+    for (PetscInt a = 0; a < 3; a++) L2 += (xb[a] - xa[a]) * (xb[a] - xa[a]);
+    for (PetscInt a = 0; a < m->bs; a++) diag[a] += bd->coef[e] / PetscSqrtReal(L2) * (xb[a] - xa[a]) * (xb[a] - xa[a]) / L2;
+  }
+}
+
 /* Constrained dofs: supports, prescribed displacements and nodes that have no bond at all. Two regions
    constraining the same dof, or a force on a constrained dof, are conflicting input. */
 static PetscErrorCode SetupConstraints(PDModel *m)
@@ -19,7 +33,7 @@ static PetscErrorCode SetupConstraints(PDModel *m)
   const PDScene   *sc  = m->scene;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
-  PetscInt        *owner, conflict[2] = {PETSC_MAX_INT, PETSC_MAX_INT}, gconflict[2], nfix = 0, niso = 0;
+  PetscInt        *owner, conflict[2] = {PETSC_MAX_INT, PETSC_MAX_INT}, gconflict[2], nfix = 0, niso = 0, nzero = 0;
   PetscInt         count[PD_MAX_REGIONS], gcount[PD_MAX_REGIONS];
   Vec              fixl;
   PetscScalar     *fx, *ur, *fr;
@@ -89,10 +103,16 @@ static PetscErrorCode SetupConstraints(PDModel *m)
   PetscCall(PDLatticeCreateGhostVec(lat, bs, &fixl));
   PetscCall(VecGetArray(fixl, &fx));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    const PetscBool isolated = m->bonds->inc_start[i + 1] == m->bonds->inc_start[i];
-    if (isolated) niso++;
+    PetscReal diag[3] = {0, 0, 0}, trace = 0;
+    NodalStiffnessDiagonal(m, i, diag);
+    for (PetscInt a = 0; a < bs; a++) trace += diag[a];
+    if (trace == 0) niso++;
     for (PetscInt a = 0; a < bs; a++) {
-      fx[bs * i + a] = (owner[bs * i + a] >= 0 || isolated) ? 1.0 : 0.0;
+      /* a direction without stiffness (a node whose bonds were all cut, or the x-direction of nodes on a
+         notch plane, which keep only in-plane bonds) is pinned: it carries no force either way */
+      const PetscBool zero = diag[a] <= 1e-10 * trace;
+      if (zero && owner[bs * i + a] < 0) nzero++;
+      fx[bs * i + a] = (owner[bs * i + a] >= 0 || zero) ? 1.0 : 0.0;
       if (fx[bs * i + a] != 0.0) nfix++;
     }
   }
@@ -125,7 +145,7 @@ static PetscErrorCode SetupConstraints(PDModel *m)
   PetscCall(VecDestroy(&fixl));
   PetscCall(MPIU_Allreduce(&nfix, &m->nconstrained, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&niso, &m->nisolated, 1, MPIU_INT, MPI_SUM, lat->comm));
-  if (m->nisolated) PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " nodes have no bond and are pinned\n", m->nisolated));
+  PetscCall(MPIU_Allreduce(&nzero, &m->nzero_dofs, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(PetscFree(owner));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,116 @@
+#!/usr/bin/env python3
+"""Elastic solve benchmark on the Gregoire D = 50 mm beam geometry (half-notched, displacement control).
+
+Times set-up (lattice, bonds, model), assembly and solve at dx = 10, 5, 2.5, 1.25 mm with several
+Krylov and direct solvers, records iteration counts and peak memory, and writes
+docs/benchmarks/elastic.md and docs/benchmarks/elastic.png. Takes about half an hour on 2 cores.
+Usage: benchmarks/elastic.py [--quick]
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.path.join(ROOT, "build", "pdimplicit")
+SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
+OUT = os.path.join(ROOT, "docs", "benchmarks")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+TIMEOUT = 900
+
+# name, ranks, options, largest dx fine enough to try (direct solvers stop early: fill-in)
+SOLVERS = [
+    ("CG + bjacobi/ICC(0), SBAIJ (default)", 2, [], 0),
+    ("CG + bjacobi/ICC(0), BAIJ", 2, ["-pd_mat_type", "baij"], 0),
+    ("CG + GAMG, AIJ", 2, ["-pc_type", "gamg"], 0),
+    ("CG + hypre BoomerAMG, AIJ", 2, ["-pd_mat_type", "aij", "-pc_type", "hypre"], 0),
+    ("MUMPS Cholesky, SBAIJ", 2, ["-ksp_type", "preonly", "-pc_type", "cholesky", "-pc_factor_mat_solver_type", "mumps"], 2.5e-3),
+    ("CHOLMOD Cholesky, AIJ (1 rank)", 1, ["-ksp_type", "preonly", "-pd_mat_type", "aij", "-pc_type", "cholesky",
+                                            "-pc_factor_mat_solver_type", "cholmod"], 5e-3),
+]
+SPACINGS = [10e-3, 5e-3, 2.5e-3, 1.25e-3]
+
+
+def run_one(dx, ranks, opts):
+    out = tempfile.mkdtemp(prefix="pdbench_")
+    cmd = ["/usr/bin/time", "-v", "mpiexec", "-n", str(ranks), EXE, "-options_file", SCENE, "-pd_dx", str(dx),
+           "-pd_output_dir", out] + opts
+    t0 = time.time()
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=TIMEOUT)
+    except subprocess.TimeoutExpired:
+        return {"status": "timeout > %d s" % TIMEOUT}
+    wall = time.time() - t0
+    if p.returncode != 0:
+        return {"status": "failed: " + (p.stderr.strip().splitlines() or ["?"])[-1][:80]}
+    s = json.load(open(os.path.join(out, "summary.json")))
+    return {"status": "ok", "wall": wall, "summary": s}
+
+
+def main():
+    quick = "--quick" in sys.argv
+    spacings = SPACINGS[:2] if quick else SPACINGS
+    rows = []
+    for dx in spacings:
+        for name, ranks, opts, finest in SOLVERS:
+            if finest and dx < finest:
+                rows.append({"dx": dx, "solver": name, "status": "skipped (fill-in: see below)"})
+                continue
+            r = run_one(dx, ranks, opts)
+            r.update({"dx": dx, "solver": name, "ranks": ranks})
+            rows.append(r)
+            print(dx, name, r["status"], r.get("summary", {}).get("timings"), flush=True)
+    os.makedirs(OUT, exist_ok=True)
+    json.dump(rows, open(os.path.join(OUT, "elastic.json"), "w"), indent=1)
+    write_report(rows)
+
+
+def write_report(rows):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    lines = ["# Elastic solve benchmark", "",
+             "Gregoire D = 50 mm half-notched beam, elastic, one load step under displacement control; "
+             "2 MPI ranks unless stated, on the 2-core machine. Produced by `benchmarks/elastic.py`.", "",
+             "| dx (mm) | nodes | bonds | solver | set-up (s) | assembly (s) | solve (s) | KSP its | peak RSS (MB) | bytes/bond | set-up Mbonds/s/core | status |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        s = r.get("summary")
+        if not s:
+            lines.append("| %g | | | %s | | | | | | | | %s |" % (r["dx"] * 1e3, r["solver"], r["status"]))
+            continue
+        t = s["timings"]
+        rss = s["memory"]["peak_rss_bytes"]
+        lines.append("| %g | %d | %d | %s | %.2f | %.2f | %.2f | %d | %.0f | %.0f | %.1f | ok |" % (
+            r["dx"] * 1e3, s["nodes"], s["bonds"], r["solver"], t["setup"], t["assembly"], t["solve"], s["ksp_its"],
+            rss / 2 ** 20, rss / s["bonds"], s["bonds"] / (t["setup"] * r["ranks"]) / 1e6))
+    open(os.path.join(OUT, "elastic_table.md"), "w").write("\n".join(lines) + "\n")
+
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
+    for name in dict.fromkeys(r["solver"] for r in rows):
+        pts = [(r["summary"]["bonds"], r["summary"]["timings"]["solve"], r["summary"]["memory"]["peak_rss_bytes"])
+               for r in rows if r["solver"] == name and r.get("summary")]
+        if not pts:
+            continue
+        b, ts, m = zip(*pts)
+        ax[0].loglog(b, ts, "o-", label=name)
+        ax[1].loglog(b, [x / 2 ** 20 for x in m], "o-", label=name)
+    ax[0].set_xlabel("bonds")
+    ax[0].set_ylabel("solve time (s)")
+    ax[1].set_xlabel("bonds")
+    ax[1].set_ylabel("peak RSS, all ranks (MB)")
+    ax[0].legend(fontsize=7)
+    for a in ax:
+        a.grid(True, which="both", alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, "elastic.png"), dpi=110)
+
+
+if __name__ == "__main__":
+    if "--report" in sys.argv:
+        write_report(json.load(open(os.path.join(OUT, "elastic.json"))))
+    else:
+        main()
