@@ -12,6 +12,7 @@ typedef struct {
   PetscInt    nrows, capacity;
   PDCurveRow *rows;
   PetscInt    steps, newton_its, ksp_its;
+  PetscInt    max_events_per_its; /* largest number of bond events granted at once */
   PetscBool   converged;
   char        status[256];
   PetscReal   t_setup, t_assembly, t_solve, t_output, t_start;
@@ -32,5 +33,5 @@ PetscErrorCode PDFieldsFinish(PDModel *, PDRecord *);
 PetscErrorCode PDCurveWrite(MPI_Comm, const PDScene *, const PDRecord *);
 PetscErrorCode PDSummaryWrite(MPI_Comm, const PDModel *, const PDRecord *);
 PetscErrorCode PDCurvePlotWrite(MPI_Comm, const PDScene *, const PDRecord *);
-PetscErrorCode PDProgress(MPI_Comm, const PDScene *, const PDCurveRow *, PetscInt nsteps);
+PetscErrorCode PDProgress(MPI_Comm, const PDScene *, const PDCurveRow *, PetscBool last);
 PetscErrorCode PDFileCommit(MPI_Comm, const char *dir, const char *name);

@@ -32,11 +32,16 @@ typedef struct {
   PetscInt  *inc_bond;  /* bond index */
   PetscInt   ncut;      /* bonds removed by notches (global) */
   PetscReal  lambda_min, lambda_max; /* surface-correction range (global) */
+  PetscReal *lambda;        /* [nbonds] surface-correction factor, kept only for per-bond critical stretches */
 } PDBonds;
 
 PetscErrorCode PDLatticeCreate(MPI_Comm, const PDScene *, PDLattice *);
 PetscErrorCode PDLatticeDestroy(PDLattice *);
 PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *, PetscInt bs, Vec *);
 PetscInt       PDLatticeNearestNode(const PDLattice *, const PetscReal p[3]);
-PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PDBonds *);
+PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PetscBool keep_lambda, PDBonds *);
+/* Global id of a bond (same on every rank): lower node id times N plus the higher one. */
+PetscInt64     PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);
+/* True on exactly one rank for every bond: the rank that owns its lower-id end. */
+PetscBool      PDBondCountedHere(const PDLattice *, const PDBonds *, PetscInt e);
 PetscErrorCode PDBondsDestroy(PDBonds *);

@@ -1,6 +1,7 @@
 /* Model: the single bond loop (internal force, tangent), boundary conditions and measurements. */
 #pragma once
 #include "pd_lattice.h"
+#include "pd_material.h"
 #include <petscsnes.h>
 
 typedef struct {
@@ -11,9 +12,19 @@ typedef struct {
   PetscBool        linear;    /* elastic law with small kinematics: K u = f, one solve per step */
   PetscReal        lambda;    /* current load factor */
   PetscReal        bc_scale;  /* diagonal given to constrained dofs, of the order of a bond stiffness */
+  PetscReal        force_scale; /* size of the load at lambda = 1 (N), for absolute tolerances */
   Vec              u_local;   /* ghosted work copy of the displacement */
   Vec              f_local;   /* ghosted work vector for internal forces */
   PetscReal       *ka, *kb;   /* per-bond tangent scalars; NULL while the tangent is constant */
+  PDLaw            law[PD_MAX_MATERIALS];
+  PetscBool        softening;  /* some bond law softens or breaks: bonds carry history */
+  /* per-bond history, allocated only when softening */
+  PetscReal       *kappa;      /* largest stretch reached, committed at accepted steps */
+  unsigned char   *level;      /* PDBondLevel the limiter allows the bond to reach */
+  unsigned char   *level_n;    /* levels at the last accepted step, to restart a step */
+  PDLawBond       *thr;        /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscInt         broken;     /* bonds broken (global, counted once) at the last accepted step */
+  PetscInt         nregularised, max_regularised; /* free dofs left without stiffness by damage */
   Vec              f_ref;     /* external force at load factor 1 (global) */
   Vec              u_ref;     /* prescribed displacement at load factor 1 (global, zero on free dofs) */
   Vec              fixed;     /* 1 on constrained dofs, 0 elsewhere (global) */
@@ -40,3 +51,9 @@ PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);
 PetscErrorCode PDModelJacobian(SNES, Vec u, Mat J, Mat P, void *);
 PetscErrorCode PDModelApplyBoundaryValues(PDModel *, PetscReal lambda, Vec u);
 PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod);
+/* Damage limiter: bonds whose stretch at u passes the threshold of their allowed level are candidates;
+   the max_events most critical (ties by global bond id) move up one level. */
+PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
+PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
+PetscErrorCode PDModelRestoreLevels(PDModel *);
+PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

@@ -13,7 +13,10 @@
 typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
 typedef enum { PD_INFLUENCE_CONSTANT, PD_INFLUENCE_CONICAL, PD_INFLUENCE_QUARTIC } PDInfluence;
 typedef enum { PD_KINEMATICS_SMALL, PD_KINEMATICS_FINITE } PDKinematics;
-typedef enum { PD_LAW_ELASTIC } PDLawKind;
+typedef enum { PD_LAW_ELASTIC, PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR } PDLawKind;
+typedef enum { PD_STRETCH_EXACT, PD_STRETCH_MODIFIED } PDStretch;
+typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE } PDControl;
+typedef enum { PD_TANGENT_CONSISTENT, PD_TANGENT_SECANT } PDTangent;
 typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
 typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
 
@@ -21,6 +24,9 @@ extern const char *const PDModelKinds[];
 extern const char *const PDInfluences[];
 extern const char *const PDKinematicsNames[];
 extern const char *const PDLawNames[];
+extern const char *const PDStretchNames[];
+extern const char *const PDControlNames[];
+extern const char *const PDTangentNames[];
 extern const char *const PDShapes[];
 extern const char *const PDRegionKinds[];
 
@@ -39,6 +45,11 @@ typedef struct {
   PDGeometry where;      /* material 0 covers the whole domain */
   PetscReal  E, rho;
   PDLawKind  law;
+  PetscReal  ft, Gf;      /* tensile strength (Pa), fracture energy (N/m) */
+  PetscReal  kr;          /* bilinear sc/s0 (Zaccariotto form) */
+  PetscBool  bobaru;      /* bilinear in the Bobaru form, s0 = ft/E */
+  PetscReal  beta;        /* trilinear */
+  PetscReal  k, alpha;    /* non-linear */
 } PDMaterial;
 
 typedef struct {
@@ -67,6 +78,15 @@ typedef struct {
   PDInfluence  influence;
   PetscBool    partial_volume, surface_correction;
   PDKinematics kinematics;
+  PDStretch    stretch;
+  PetscBool    sc_correction; /* per-bond critical stretch from lambda_ij c */
+  PDControl    control;
+  PDTangent    tangent;
+  PetscInt     limiter_max;    /* bond events granted per Newton iteration; 0: no cap */
+  PetscInt     limiter_stage_its; /* Newton iterations between grants while events are pending */
+  PetscReal    lambda_max;     /* end of the load path */
+  PetscReal    dlambda_min, dlambda_max;
+  PetscReal    stop_cmod;      /* stop once the CMOD gauge opens this much (m); 0: off */
   PetscInt     nmaterials, nnotches, nregions;
   PDMaterial   material[PD_MAX_MATERIALS];
   PDNotch      notch[PD_MAX_NOTCHES];

@@ -15,7 +15,12 @@ static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, P
   PetscCall(PDRecordCreate(comm, sc, rec));
   PetscCall(PetscTime(&t0));
   PetscCall(PDLatticeCreate(comm, sc, lat));
-  PetscCall(PDBondsCreate(sc, lat, bonds));
+  {
+    PetscBool keep = PETSC_FALSE; /* per-bond critical stretches need each bond's lambda */
+    for (PetscInt k = 0; k < sc->nmaterials; k++)
+      if (sc->material[k].law != PD_LAW_ELASTIC && sc->sc_correction) keep = PETSC_TRUE;
+    PetscCall(PDBondsCreate(sc, lat, keep, bonds));
+  }
   PetscCall(PDModelCreate(sc, lat, bonds, model));
   PetscCall(PetscTime(&t1));
   rec->t_setup = t1 - t0;

@@ -183,7 +183,7 @@ static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd)
 
 /* Volume-method surface correction (Eq. 4.11): V_i = sum_j beta_ij V_j over the family of i, shared with
    neighbouring ranks through a ghosted vector, lambda_ij = 2 V0 / (V_i + V_j). */
-static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta)
+static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta, PetscBool keep)
 {
   Vec             vol, vloc;
   PetscScalar    *v;
@@ -207,6 +207,7 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
     const PetscReal Vsum = PetscRealPart(v[bd->a[e]] + v[bd->b[e]]);
     const PetscReal lam  = Vsum > 0 ? 2 * V0 / Vsum : 1;
     bd->coef[e] *= lam;
+    if (keep) bd->lambda[e] = lam;
     lmin = PetscMin(lmin, lam);
     lmax = PetscMax(lmax, lam);
   }
@@ -218,7 +219,7 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PDBonds *bd)
+PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd)
 {
   PairList   pl = {NULL, NULL, 0, 0};
   PetscInt   ncut_local, nonce = 0;
@@ -246,11 +247,13 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PDBonds *b
     bd->material[e] = m;
     beta[e]        = PartialVolumeFactor(sc, len, lat->horizon);
     bd->coef[e]    = c0[m] * PDInfluenceValue(sc->influence, len, lat->horizon) * beta[e] * lat->cell_volume * lat->cell_volume;
-    if (j < lat->nowned || lat->gid[i] < lat->gid[j]) nonce++;
+    if (PDBondCountedHere(lat, bd, e)) nonce++;
   }
   PetscCall(BuildIncidence(lat, bd));
   bd->lambda_min = bd->lambda_max = 1;
-  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta));
+  keep_lambda = keep_lambda && sc->surface_correction;
+  if (keep_lambda) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->lambda));
+  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, keep_lambda));
   PetscCall(PetscFree(beta));
   PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
@@ -265,5 +268,17 @@ PetscErrorCode PDBondsDestroy(PDBonds *bd)
   PetscCall(PetscFree2(bd->coef, bd->material));
   PetscCall(PetscFree(bd->inc_start));
   PetscCall(PetscFree(bd->inc_bond));
+  PetscCall(PetscFree(bd->lambda));
   PetscFunctionReturn(0);
+}
+
+PetscBool PDBondCountedHere(const PDLattice *lat, const PDBonds *bd, PetscInt e)
+{
+  return (bd->b[e] < lat->nowned || lat->gid[bd->a[e]] < lat->gid[bd->b[e]]) ? PETSC_TRUE : PETSC_FALSE;
+}
+
+PetscInt64 PDBondGlobalId(const PDLattice *lat, const PDBonds *bd, PetscInt e)
+{
+  const PetscInt64 ga = lat->gid[bd->a[e]], gb = lat->gid[bd->b[e]];
+  return ga < gb ? ga * lat->nglobal + gb : gb * lat->nglobal + ga;
 }

@@ -47,7 +47,7 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u)
   PetscCall(PetscObjectSetName((PetscObject)v3, name));
   PetscCall(VecView(v3, rec->h5));
   PetscCall(CreateNodeVec(m, 1, &d));
-  PetscCall(VecZeroEntries(d)); /* elastic bonds never damage */
+  PetscCall(PDModelNodalDamage(m, d));
   PetscCall(PetscSNPrintf(name, sizeof name, "damage_%06" PetscInt_FMT, step));
   PetscCall(PetscObjectSetName((PetscObject)d, name));
   PetscCall(VecView(d, rec->h5));

@@ -83,12 +83,12 @@ PetscErrorCode PDFileCommit(MPI_Comm comm, const char *dir, const char *name)
 }
 
 /* One line on stderr, rewritten in place on a terminal. */
-PetscErrorCode PDProgress(MPI_Comm comm, const PDScene *sc, const PDCurveRow *row, PetscInt nsteps)
+PetscErrorCode PDProgress(MPI_Comm comm, const PDScene *sc, const PDCurveRow *row, PetscBool last)
 {
   PetscFunctionBeginUser;
   if (!sc->progress) PetscFunctionReturn(0);
-  PetscCall(PetscFPrintf(comm, PETSC_STDERR, "\r[%s] step %" PetscInt_FMT "/%" PetscInt_FMT "  lambda %.4f  load %.5g N  disp %.5g m  newton %" PetscInt_FMT "  ksp %" PetscInt_FMT "  %.1f s%s",
-                         sc->name, row->step, nsteps, (double)row->lambda, (double)row->load, (double)row->disp, row->newton_its, row->ksp_its,
-                         (double)row->wall, row->step == nsteps ? "\n" : ""));
+  PetscCall(PetscFPrintf(comm, PETSC_STDERR, "\r[%s] step %" PetscInt_FMT "  lambda %.4f/%.4g  load %.5g N  disp %.4g m  cmod %.4g m  broken %" PetscInt_FMT "  newton %" PetscInt_FMT "  %.1f s   %s",
+                         sc->name, row->step, (double)row->lambda, (double)sc->lambda_max, (double)row->load, (double)row->disp, (double)row->cmod,
+                         row->broken_bonds, row->newton_its, (double)row->wall, last ? "\n" : ""));
   PetscFunctionReturn(0);
 }

@@ -1,21 +1,24 @@
-/* The bond loop: internal forces and the tangent. Both the residual and the Jacobian use it, and so
-   will the explicit path. Per bond the scalar force g and the tangent scalars are evaluated once per
-   rank; rows of the stiffness are then gathered from them node by node. */
+/* The bond loop: internal forces and the tangent. The residual, the Jacobian, the limiter and (later)
+   the explicit path all use it. Per bond, the law is evaluated once per rank; rows of the stiffness are
+   then gathered from the stored tangent scalars node by node. */
 #include "pd_model.h"
+#include "kernel.h"
 
-/* Geometry of one bond in the current configuration. Small kinematics: s = xi.eta/|xi|^2 along
-   e = xi/|xi| (the linearised micromodulus of Eq. 4.13). Finite: s = (|y| - |xi|)/|xi| along y/|y|. */
-static inline void BondState(PDKinematics kin, PetscInt dim, const PetscReal *xi_pos, const PetscReal *xj_pos, const PetscScalar *ui,
-                             const PetscScalar *uj, PetscReal e[3], PetscReal *len0, PetscReal *len, PetscReal *s)
+/* Geometry of one bond in the current configuration: direction e, reference and current lengths, the
+   stretch s and the factor q with ds/deta = q e. Small kinematics: s = xi.eta/|xi|^2 along xi/|xi|
+   (the linearised micromodulus of Eq. 4.13). Finite: exact s = (|y| - |xi|)/|xi|, q = 1/|xi|, or the
+   modified s = (|y|^2 - |xi|^2)/(2|xi|^2), q = |y|/|xi|^2 (Miranda et al. Eq. 17). */
+static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *xa, const PetscReal *xb, const PetscScalar *ua,
+                             const PetscScalar *ub, PetscReal e[3], PetscReal *len0, PetscReal *len, PetscReal *s, PetscReal *q)
 {
   PetscReal xi[3] = {0, 0, 0}, eta[3] = {0, 0, 0}, L2 = 0;
   for (PetscInt a = 0; a < dim; a++) {
-    xi[a]  = xj_pos[a] - xi_pos[a];
-    eta[a] = PetscRealPart(uj[a] - ui[a]);
+    xi[a]  = xb[a] - xa[a];
+    eta[a] = PetscRealPart(ub[a] - ua[a]);
     L2 += xi[a] * xi[a];
   }
   *len0 = PetscSqrtReal(L2);
-  if (kin == PD_KINEMATICS_SMALL) {
+  if (sc->kinematics == PD_KINEMATICS_SMALL) {
     PetscReal dot = 0;
     for (PetscInt a = 0; a < dim; a++) {
       dot += xi[a] * eta[a];
@@ -23,12 +26,58 @@ static inline void BondState(PDKinematics kin, PetscInt dim, const PetscReal *xi
     }
     *s   = dot / L2;
     *len = *len0;
+    *q   = 1 / *len0;
   } else {
     PetscReal y2 = 0;
     for (PetscInt a = 0; a < dim; a++) y2 += (xi[a] + eta[a]) * (xi[a] + eta[a]);
     *len = PetscSqrtReal(y2);
     for (PetscInt a = 0; a < dim; a++) e[a] = (xi[a] + eta[a]) / *len;
-    *s = (*len - *len0) / *len0;
+    if (sc->stretch == PD_STRETCH_MODIFIED) {
+      *s = (y2 - L2) / (2 * L2);
+      *q = *len / L2;
+    } else {
+      *s = (*len - *len0) / *len0;
+      *q = 1 / *len0;
+    }
+  }
+}
+
+static inline const PDLawBond *Thresholds(const PDModel *m, PetscInt e, const PDLaw *law)
+{
+  return m->thr ? &m->thr[e] : &law->nominal;
+}
+
+/* Scalar bond force g(s) and its slope. History kappa_n and the level the limiter allows give the
+   effective largest stretch; a bond held below a threshold stays on its current branch. Compression is
+   linear elastic whatever the damage (cracks do not interpenetrate). */
+static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp)
+{
+  const PetscReal c = m->bonds->coef[e];
+  const PDLaw    *law;
+  PetscReal       kap, cap, d, dd;
+
+  if (!m->softening || s < 0) {
+    *g  = c * s;
+    *gp = c;
+    return;
+  }
+  law = &m->law[m->bonds->material[e]];
+  if (law->kind == PD_LAW_ELASTIC) {
+    *g  = c * s;
+    *gp = c;
+    return;
+  }
+  {
+    const PDLawBond *t = Thresholds(m, e, law);
+    cap                = PDLawNextThreshold(law, t, (PDBondLevel)m->level[e]);
+    kap                = PetscMax(m->kappa[e], s);
+    /* held at the threshold the limiter has not yet let it pass: the limit from below */
+    if (kap >= cap) kap = cap * (1 - 1e-12);
+    d = PDLawDamage(law, t, kap, &dd);
+    *g                 = c * (1 - d) * s;
+    /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
+    if (m->scene->tangent == PD_TANGENT_CONSISTENT && s >= m->kappa[e] && s < cap) *gp = c * ((1 - d) - s * dd);
+    else *gp = c * (1 - d);
   }
 }
 
@@ -42,50 +91,48 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   PetscCall(PetscArrayzero(f, bs * lat->nlocal));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
-    PetscReal      dir[3], L0, L, s, g;
-    BondState(m->scene->kinematics, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s);
-    g = bd->coef[e] * s;
+    PetscReal      dir[3], L0, L, s, q, g, gp;
+    BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
+    BondForce(m, e, s, &g, &gp);
     for (PetscInt a = 0; a < bs; a++) {
       f[bs * i + a] -= g * dir[a];
       f[bs * j + a] += g * dir[a];
     }
   }
-  PetscCall(PetscLogFlops(20.0 * bd->nbonds));
+  PetscCall(PetscLogFlops(30.0 * bd->nbonds));
   PetscFunctionReturn(0);
 }
 
-/* Tangent scalars of each bond: block = ka e e^T + kb I (THEORY.md Sec. 4: ka = g'/|xi| - g/|y|, kb = g/|y|). */
+/* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4). */
 PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal *ka, PetscReal *kb)
 {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
+  const PetscBool  geometric = m->scene->kinematics == PD_KINEMATICS_FINITE;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
-    PetscReal      dir[3], L0, L, s;
-    BondState(m->scene->kinematics, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s);
-    if (m->scene->kinematics == PD_KINEMATICS_SMALL) {
-      ka[e] = bd->coef[e] / L0;
-      kb[e] = 0;
-    } else {
-      const PetscReal g = bd->coef[e] * s;
-      ka[e]             = bd->coef[e] / L0 - g / L;
-      kb[e]             = g / L;
-    }
+    PetscReal      dir[3], L0, L, s, q, g, gp;
+    BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
+    BondForce(m, e, s, &g, &gp);
+    ka[e] = gp * q - (geometric ? g / L : 0);
+    kb[e] = geometric ? g / L : 0;
   }
   PetscFunctionReturn(0);
 }
 
 /* Gathers one stiffness row per owned node from the bond scalars. Constrained dofs are eliminated
-   symmetrically: their rows and columns are zero but for bc_scale on the diagonal. */
-PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J)
+   symmetrically: their rows and columns are zero but for bc_scale on the diagonal. A free direction
+   left without stiffness (every bond of the node broken) gets a small diagonal so that the matrix stays
+   regular; the residual is not changed, so the solution is not either. */
+PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J, PetscInt *nregularised)
 {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs = m->bs, bs2 = bs * bs;
-  PetscInt         maxrow = 0, *cols;
+  PetscInt         maxrow = 0, *cols, nreg = 0;
   PetscScalar     *vals;
 
   PetscFunctionBeginUser;
@@ -94,39 +141,71 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   for (PetscInt i = 0; i < lat->nowned; i++) {
     const PetscInt s = bd->inc_start[i], n = bd->inc_start[i + 1] - s, ncols = n + 1, ld = ncols * bs;
     PetscInt       diag = n, c = 0;
-    PetscReal      D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+    PetscReal      D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Dref[3] = {0, 0, 0};
     for (PetscInt p = 0; p < n; p++) {
       const PetscInt e = bd->inc_bond[s + p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
-      PetscReal      dir[3], L0, L, st, K[9], a, b;
+      PetscReal      dir[3], L0, L, st, q, K[9], a, b;
       if (diag == n && lat->gid[j] > lat->gid[i]) diag = c++;
-      BondState(m->scene->kinematics, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &st);
+      BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &st, &q);
       /* without per-bond scalars the tangent is the constant linearised micromodulus */
       a = ka ? ka[e] : bd->coef[e] / L0;
       b = kb ? kb[e] : 0;
-      for (PetscInt r = 0; r < bs; r++)
-        for (PetscInt q = 0; q < bs; q++) {
-          K[r * bs + q] = a * dir[r] * dir[q] + (r == q ? b : 0);
-          D[r * bs + q] += K[r * bs + q];
+      for (PetscInt r = 0; r < bs; r++) {
+        Dref[r] += bd->coef[e] / L0 * dir[r] * dir[r];
+        for (PetscInt qq = 0; qq < bs; qq++) {
+          K[r * bs + qq] = a * dir[r] * dir[qq] + (r == qq ? b : 0);
+          D[r * bs + qq] += K[r * bs + qq];
         }
+      }
       cols[c] = lat->gid[j];
       for (PetscInt r = 0; r < bs; r++)
-        for (PetscInt q = 0; q < bs; q++) {
-          const PetscBool zero = m->fixed_local[bs * i + r] || m->fixed_local[bs * j + q];
-          vals[r * ld + c * bs + q] = zero ? 0 : -K[r * bs + q];
+        for (PetscInt qq = 0; qq < bs; qq++) {
+          const PetscBool zero = m->fixed_local[bs * i + r] || m->fixed_local[bs * j + qq];
+          vals[r * ld + c * bs + qq] = zero ? 0 : -K[r * bs + qq];
         }
       c++;
     }
     if (diag == n) diag = c;
     cols[diag] = lat->gid[i];
-    for (PetscInt r = 0; r < bs; r++)
-      for (PetscInt q = 0; q < bs; q++) {
-        const PetscBool fr = m->fixed_local[bs * i + r], fq = m->fixed_local[bs * i + q];
-        vals[r * ld + diag * bs + q] = (fr || fq) ? (r == q ? m->bc_scale : 0) : D[r * bs + q];
+    for (PetscInt r = 0; r < bs; r++) {
+      if (!m->fixed_local[bs * i + r] && PetscAbsReal(D[r * bs + r]) <= 1e-10 * Dref[r]) {
+        D[r * bs + r] += 1e-8 * m->bc_scale;
+        nreg++;
       }
+      for (PetscInt qq = 0; qq < bs; qq++) {
+        const PetscBool fr = m->fixed_local[bs * i + r], fq = m->fixed_local[bs * i + qq];
+        vals[r * ld + diag * bs + qq] = (fr || fq) ? (r == qq ? m->bc_scale : 0) : D[r * bs + qq];
+      }
+    }
     PetscCall(MatSetValuesBlocked(J, 1, &lat->gid[i], ncols, cols, vals, INSERT_VALUES));
   }
   PetscCall(PetscFree2(cols, vals));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+  PetscCall(MPIU_Allreduce(&nreg, nregularised, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscFunctionReturn(0);
+}
+
+/* Stretch of every bond at u, for the limiter and the history update. */
+PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s)
+{
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    PetscReal dir[3], L0, L, q;
+    BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L, &s[e], &q);
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Bond damage with the committed history, for output. */
+PetscReal PDModelBondDamage(const PDModel *m, PetscInt e)
+{
+  const PDLaw *law;
+  PetscReal    dd;
+  if (!m->softening) return 0;
+  law = &m->law[m->bonds->material[e]];
+  return PDLawDamage(law, Thresholds(m, e, law), m->kappa[e], &dd);
 }

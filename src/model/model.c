@@ -219,6 +219,12 @@ static PetscErrorCode SetupScale(PDModel *m)
   PetscCall(MPIU_Allreduce(&sum, &gsum, 1, MPIU_REAL, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
   m->bc_scale = gsum > 0 ? gsum / gn : 1.0;
+  {
+    PetscReal fn, un;
+    PetscCall(VecNorm(m->f_ref, NORM_2, &fn));
+    PetscCall(VecNorm(m->u_ref, NORM_2, &un));
+    m->force_scale = fn + m->bc_scale * un;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -230,9 +236,11 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->lat    = lat;
   m->bonds  = bd;
   m->bs     = sc->dim;
-  m->linear = sc->kinematics == PD_KINEMATICS_SMALL ? PETSC_TRUE : PETSC_FALSE;
-  for (PetscInt k = 0; k < sc->nmaterials; k++)
-    if (sc->material[k].law != PD_LAW_ELASTIC) m->linear = PETSC_FALSE;
+  for (PetscInt k = 0; k < sc->nmaterials; k++) {
+    PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
+    if (sc->material[k].law != PD_LAW_ELASTIC) m->softening = PETSC_TRUE;
+  }
+  m->linear = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening) ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PDLatticeCreateGhostVec(lat, m->bs, &m->u_local));
   PetscCall(VecDuplicate(m->u_local, &m->f_local));
   PetscCall(CreateGlobalVec(lat, m->bs, &m->f_ref));
@@ -249,10 +257,23 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   PetscCall(SetupConstraints(m));
   PetscCall(SetupPatterns(m));
   PetscCall(SetupScale(m));
-  if (sc->kinematics == PD_KINEMATICS_FINITE) {
-    PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &m->ka, PetscMax(1, bd->nbonds), &m->kb));
+  if (!m->linear) PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &m->ka, PetscMax(1, bd->nbonds), &m->kb));
+  /* history exists only when some law softens: an elastic scene allocates none */
+  m->history_bytes = 0;
+  if (m->softening) {
+    const PetscInt nb = PetscMax(1, bd->nbonds);
+    PetscCall(PetscCalloc3(nb, &m->kappa, nb, &m->level, nb, &m->level_n));
+    m->history_bytes = (PetscInt64)bd->nbonds * (sizeof(PetscReal) + 2);
+    if (bd->lambda) {
+      PetscCall(PetscMalloc1(nb, &m->thr));
+      for (PetscInt e = 0; e < bd->nbonds; e++) PDLawBondThresholds(&m->law[bd->material[e]], bd->lambda[e], &m->thr[e]);
+      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
+    }
   }
-  m->history_bytes = 0; /* elastic bonds carry no history */
+  {
+    PetscInt64 mine = m->history_bytes;
+    PetscCall(MPIU_Allreduce(&mine, &m->history_bytes, 1, MPIU_INT64, MPI_SUM, lat->comm));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -270,13 +291,15 @@ PetscErrorCode PDModelDestroy(PDModel *m)
   PetscCall(PetscFree(m->fixed_local));
   PetscCall(PetscFree(m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
+  PetscCall(PetscFree3(m->kappa, m->level, m->level_n));
+  PetscCall(PetscFree(m->thr));
   PetscFunctionReturn(0);
 }
 
 /* Copies the owned displacement into the ghosted work vector and fetches the ghosts. Constrained
    dofs take their prescribed values whatever u holds (lifting), so the internal force of free dofs
    does not depend on constrained ones: the Jacobian with eliminated columns is then exact. */
-static PetscErrorCode ScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc)
+PetscErrorCode PDModelScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc)
 {
   PetscScalar *w;
 
@@ -293,7 +316,7 @@ static PetscErrorCode ScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, 
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode RestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
+PetscErrorCode PDModelRestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
 {
   PetscFunctionBeginUser;
   PetscCall(VecRestoreArrayRead(*loc, ul));
@@ -308,7 +331,7 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F)
   Vec                uloc, floc;
 
   PetscFunctionBeginUser;
-  PetscCall(ScatterToLocal(m, u, &ul, &uloc));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &floc));
   PetscCall(VecGetArray(floc, &fl));
   PetscCall(PDModelInternalForceLocal(m, ul, fl));
@@ -317,7 +340,7 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F)
   PetscCall(VecRestoreArray(F, &f));
   PetscCall(VecRestoreArray(floc, &fl));
   PetscCall(VecGhostRestoreLocalForm(m->f_local, &floc));
-  PetscCall(RestoreLocal(m, &ul, &uloc));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscFunctionReturn(0);
 }
 
@@ -362,10 +385,12 @@ PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx)
   /* a linear model's stiffness never changes: assemble it once, and the preconditioner is kept too */
   if (m->linear && m->jacobian_assemblies > 0) PetscFunctionReturn(0);
   PetscCall(PetscTime(&t0));
-  PetscCall(ScatterToLocal(m, u, &ul, &uloc));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   if (m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb));
-  PetscCall(PDModelAssembleRows(m, ul, m->ka, m->kb, P));
-  PetscCall(RestoreLocal(m, &ul, &uloc));
+  PetscCall(PDModelAssembleRows(m, ul, m->ka, m->kb, P, &m->nregularised));
+  if (m->nregularised) PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " dofs without stiffness regularised\n", m->nregularised));
+  m->max_regularised = PetscMax(m->max_regularised, m->nregularised);
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   if (J != P) {
     PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));

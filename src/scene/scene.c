@@ -7,7 +7,10 @@
 const char *const PDModelKinds[]      = {"3d", "plane_stress", "plane_strain"};
 const char *const PDInfluences[]      = {"constant", "conical", "quartic"};
 const char *const PDKinematicsNames[] = {"small", "finite"};
-const char *const PDLawNames[]        = {"elastic"};
+const char *const PDLawNames[]        = {"elastic", "linear", "bilinear", "trilinear", "nonlinear"};
+const char *const PDStretchNames[]    = {"exact", "modified"};
+const char *const PDControlNames[]    = {"displacement", "force"};
+const char *const PDTangentNames[]    = {"consistent", "secant"};
 const char *const PDShapes[]          = {"box", "cylinder"};
 const char *const PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
 static const char *const PDModes[]    = {"implicit", "explicit"};
@@ -106,8 +109,40 @@ static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene
   PetscCall(PDOptionReal(PetscOptionsObject, opt, "Density (kg/m^3)", &m->rho, NULL));
   PetscCheck(m->rho > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: density must be positive, got %g", opt, (double)m->rho);
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_law", m->option));
-  PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bond law", PDLawNames, (PetscInt)(sizeof PDLawNames / sizeof *PDLawNames), &law, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bond law: elastic, linear (brittle), bilinear, trilinear, nonlinear", PDLawNames, 5, &law, NULL));
   m->law = (PDLawKind)law;
+  if (m->law == PD_LAW_ELASTIC) PetscFunctionReturn(0);
+  {
+    PetscReal fcm = 0;
+    PetscBool set_fcm, set_gf;
+    PetscInt  form = m->bobaru;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_ft", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Tensile strength (Pa)", &m->ft, NULL));
+    PetscCheck(m->ft > 0 || m->law == PD_LAW_LINEAR || (m->law == PD_LAW_BILINEAR && !m->bobaru), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: tensile strength must be positive, got %g", opt, (double)m->ft);
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_fcm", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Mean compressive strength (MPa): G_F = 73 fcm^0.18 (fib MC2010) when no G_F is given", &fcm, &set_fcm));
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_Gf", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Fracture energy (N/m)", &m->Gf, &set_gf));
+    if (!set_gf && set_fcm) m->Gf = 73 * PetscPowReal(fcm, 0.18);
+    PetscCheck(m->Gf > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: fracture energy must be positive, got %g", opt, (double)m->Gf);
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_bilinear_form", m->option));
+    PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bilinear law: zaccariotto (s_c = k_r s0) or bobaru (s0 = ft/E)", (const char *const[]){"zaccariotto", "bobaru"}, 2,
+                           &form, NULL));
+    m->bobaru = form ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_bilinear_kr", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Bilinear law (Zaccariotto): k_r = s_c/s0", &m->kr, NULL));
+    PetscCheck(m->kr > 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must exceed 1, got %g", opt, (double)m->kr);
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_trilinear_beta", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Trilinear law: force ratio at the kink", &m->beta, NULL));
+    PetscCheck(m->beta > 0 && m->beta < 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must lie in (0, 1), got %g", opt, (double)m->beta);
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_nonlinear_k", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Non-linear law: exponent k", &m->k, NULL));
+    PetscCheck(m->k > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must be positive, got %g", opt, (double)m->k);
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_nonlinear_alpha", m->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Non-linear law: alpha", &m->alpha, NULL));
+    PetscCheck(m->alpha >= 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must be non-negative, got %g", opt, (double)m->alpha);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -252,6 +287,15 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   sc->material[0].E      = 30e9;
   sc->material[0].rho    = 2400;
   sc->material[0].law    = PD_LAW_ELASTIC;
+  sc->material[0].kr     = 25;
+  sc->material[0].beta   = 0.25;
+  sc->material[0].k      = 25;
+  sc->material[0].alpha  = 0.25;
+  sc->sc_correction      = PETSC_TRUE;
+  sc->limiter_max        = 10;
+  sc->limiter_stage_its  = 1;
+  sc->lambda_max         = 1;
+  sc->dlambda_min        = 1e-6;
 
   PetscOptionsBegin(comm, NULL, "pdimplicit scene", NULL);
   PetscCall(PDOptionString(PetscOptionsObject, "-pd_name", "Scene name (names the default output directory)", sc->name, sizeof sc->name, NULL));
@@ -289,6 +333,14 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_surface_correction", "Volume-method surface correction", &sc->surface_correction, NULL));
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_kinematics", "Bond stretch: small (linearised) or finite (exact)", PDKinematicsNames, 2, &kin, NULL));
   sc->kinematics = (PDKinematics)kin;
+  {
+    PetscInt v = sc->stretch;
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_stretch", "Finite-kinematics stretch: exact or modified (Miranda et al. 2018, no square root)", PDStretchNames,
+                           2, &v, NULL));
+    sc->stretch = (PDStretch)v;
+  }
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction", "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)",
+                         &sc->sc_correction, NULL));
 
   sc->nmaterials = 1;
   PetscCall(ReadMaterial(PetscOptionsObject, sc, 0));
@@ -338,8 +390,35 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
         }
     }
   }
-  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_steps", "Number of load steps", &sc->steps, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_steps", "Load steps to lambda_max (the initial increment when adaptive)", &sc->steps, NULL));
   PetscCheck(sc->steps >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_steps: must be at least 1, got %" PetscInt_FMT, sc->steps);
+  {
+    PetscInt v = sc->region[sc->load_region].kind == PD_REGION_FORCE ? PD_CONTROL_FORCE : PD_CONTROL_DISPLACEMENT, t = sc->tangent;
+    PetscBool set;
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_control", "Path control: displacement or force (must match the load region's kind)", PDControlNames, 2, &v, &set));
+    sc->control = (PDControl)v;
+    PetscCheck((sc->control == PD_CONTROL_FORCE) == (sc->region[sc->load_region].kind == PD_REGION_FORCE), comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_control: '%s' does not match the load region %s, which is a %s region", PDControlNames[sc->control], sc->region[sc->load_region].option,
+               PDRegionKinds[sc->region[sc->load_region].kind]);
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_tangent", "Tangent of softening bonds: consistent (quadratic Newton, indefinite) or secant (positive)", PDTangentNames,
+                           2, &t, NULL));
+    sc->tangent = (PDTangent)t;
+  }
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_lambda_max", "Load factor at which the path ends", &sc->lambda_max, NULL));
+  PetscCheck(sc->lambda_max > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_lambda_max: must be positive, got %g", (double)sc->lambda_max);
+  sc->dlambda_max = sc->lambda_max / sc->steps;
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dlambda_max", "Largest load-factor increment", &sc->dlambda_max, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dlambda_min", "Smallest load-factor increment before the run stops", &sc->dlambda_min, NULL));
+  PetscCheck(sc->dlambda_min > 0 && sc->dlambda_min <= sc->dlambda_max, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_dlambda_min: must be positive and at most -pd_dlambda_max, got %g", (double)sc->dlambda_min);
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_stop_cmod", "Stop once the CMOD gauge opens this much (m); 0: off", &sc->stop_cmod, NULL));
+  PetscCheck(sc->stop_cmod >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_stop_cmod: must be non-negative, got %g", (double)sc->stop_cmod);
+  PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT, "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_max_bonds", "Damage limiter: bond events (entering softening, breaking) per Newton iteration; 0: no cap",
+                        &sc->limiter_max, NULL));
+  PetscCheck(sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT, sc->limiter_max);
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_stage_its", "Newton iterations between two grants of the limiter", &sc->limiter_stage_its, NULL));
+  PetscCheck(sc->limiter_stage_its >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_stage_its: must be at least 1, got %" PetscInt_FMT, sc->limiter_stage_its);
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_fields_every", "Write fields every N steps (0: last step only)", &sc->fields_every, NULL));
   PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT, sc->fields_every);
   PetscCall(PetscSNPrintf(sc->output_dir, sizeof sc->output_dir, "output/%s", sc->name));

@@ -1,6 +1,10 @@
-/* Quasi-static path under load or displacement control: one SNES solve per load step. An elastic
-   model with small kinematics is linear, so each step is a single KSP solve (SNESKSPONLY). */
+/* Quasi-static path under load or displacement control. The load factor lambda scales every prescribed
+   displacement and applied force; each increment is solved by SNES (one KSP solve with SNESKSPONLY when
+   the model is linear), with the damage limiter granting bond events between Newton stages. Increments
+   are cut on failure and grown on easy convergence. */
 #include "pd_solve.h"
+
+#define PD_MAX_STAGES 1000000
 
 static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes)
 {
@@ -12,12 +16,13 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes)
   PetscCall(SNESGetKSP(snes, &ksp));
   /* CG + block Jacobi with ICC(0) blocks on SBAIJ storage: measured fastest on the PD stiffness
      (docs/benchmarks/elastic.md); direct factorisations suffer from the fill-in of a 3D horizon and
-     GAMG's set-up costs more than it saves on these matrices. */
-  PetscCall(KSPSetType(ksp, KSPCG));
+     GAMG's set-up costs more than it saves on these matrices. The consistent tangent of a softening
+     bond is indefinite, so it gets MINRES, which needs symmetry only. */
+  PetscCall(KSPSetType(ksp, (m->softening && m->scene->tangent == PD_TANGENT_CONSISTENT) ? KSPMINRES : KSPCG));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PCSetType(pc, PCBJACOBI));
-  PetscCall(KSPSetTolerances(ksp, 1e-9, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
-  PetscCall(SNESSetTolerances(snes, PETSC_DEFAULT, 1e-8, PETSC_DEFAULT, 50, PETSC_DEFAULT));
+  PetscCall(KSPSetTolerances(ksp, m->linear ? 1e-9 : 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
+  PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, 1e-8, PETSC_DEFAULT, 50, -1));
   PetscCall(SNESSetFromOptions(snes));
   PetscFunctionReturn(0);
 }
@@ -28,68 +33,147 @@ static PetscBool FieldsDue(const PDScene *sc, PetscInt step, PetscBool last)
   return (sc->fields_every > 0 && step % sc->fields_every == 0) ? PETSC_TRUE : PETSC_FALSE;
 }
 
+typedef struct {
+  PetscInt  its, lits, stages, max_events;
+  PetscBool ok;
+  char      why[128];
+} StepResult;
+
+/* One load increment: Newton stages until equilibrium holds with no deferred bond event. */
+static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *res)
+{
+  const PDScene *sc      = m->scene;
+  PetscBool      limited = PETSC_FALSE;
+  PetscInt       maxit;
+  PetscReal      atol, rtol, stol;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(res, sizeof *res));
+  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, NULL));
+  for (;;) {
+    SNESConvergedReason reason;
+    PetscInt            its, lits, ncand, granted;
+
+    PetscCall(SNESSetTolerances(snes, atol, rtol, stol, limited ? PetscMin(sc->limiter_stage_its, maxit) : maxit, -1));
+    PetscCall(SNESSolve(snes, NULL, u));
+    PetscCall(SNESGetConvergedReason(snes, &reason));
+    PetscCall(SNESGetIterationNumber(snes, &its));
+    PetscCall(SNESGetLinearSolveIterations(snes, &lits));
+    res->its += its;
+    res->lits += lits;
+    if (reason == SNES_DIVERGED_FNORM_NAN || reason == SNES_DIVERGED_LINEAR_SOLVE) {
+      PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
+      break;
+    }
+    PetscCall(PDModelGrantEvents(m, u, sc->limiter_max, &ncand, &granted));
+    if (granted) {
+      res->max_events = PetscMax(res->max_events, granted);
+      if (++res->stages > PD_MAX_STAGES) {
+        PetscCall(PetscSNPrintf(res->why, sizeof res->why, "more than %d limiter stages", PD_MAX_STAGES));
+        break;
+      }
+      limited = PETSC_TRUE;
+      continue;
+    }
+    if (reason > 0) {
+      res->ok = PETSC_TRUE;
+      break;
+    }
+    if (limited && reason == SNES_DIVERGED_MAX_IT) { /* events are settled: finish with full Newton */
+      limited = PETSC_FALSE;
+      continue;
+    }
+    PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
+    break;
+  }
+  PetscCall(SNESSetTolerances(snes, atol, rtol, stol, maxit, -1));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec)
 {
-  const PDScene *sc = m->scene;
+  const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
   Mat            J;
-  Vec            u, r;
+  Vec            u, u_n, r;
+  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps;
+  PetscInt       step     = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
   PetscCall(VecDuplicate(m->f_ref, &u));
+  PetscCall(VecDuplicate(m->f_ref, &u_n));
   PetscCall(VecDuplicate(m->f_ref, &r));
-  PetscCall(VecZeroEntries(u));
+  PetscCall(VecZeroEntries(u_n));
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
   PetscCall(SNESSetJacobian(snes, J, J, PDModelJacobian, m));
   PetscCall(ConfigureSolver(m, snes));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
-  for (PetscInt step = 1; step <= sc->steps; step++) {
-    SNESConvergedReason reason;
-    PDCurveRow          row;
-    PetscInt            its, lits;
-    PetscLogDouble      t0, t1, now;
-    PetscReal           asm0 = m->t_assembly;
+  dl = PetscMin(dl, sc->dlambda_max);
+  while (lambda_n < sc->lambda_max * (1 - 1e-12)) {
+    const PetscReal lam = PetscMin(lambda_n + dl, sc->lambda_max);
+    StepResult      res;
+    PDCurveRow      row;
+    PetscLogDouble  t0, t1, now;
+    PetscReal       asm0 = m->t_assembly;
+    PetscBool       stop = PETSC_FALSE;
 
-    PetscCall(PDModelApplyBoundaryValues(m, (PetscReal)step / sc->steps, u));
+    PetscCall(VecCopy(u_n, u));
+    PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
-    PetscCall(SNESSolve(snes, NULL, u));
+    PetscCall(SolveIncrement(m, snes, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);
-    PetscCall(SNESGetConvergedReason(snes, &reason));
-    PetscCall(SNESGetIterationNumber(snes, &its));
-    PetscCall(SNESGetLinearSolveIterations(snes, &lits));
-    rec->newton_its += its;
-    rec->ksp_its += lits;
-    if (reason < 0) {
-      rec->converged = PETSC_FALSE;
-      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at step %" PetscInt_FMT ": %s", step, SNESConvergedReasons[reason]));
-      PetscCall(PetscPrintf(comm, "pdimplicit: %s\n", rec->status));
-      break;
+    rec->newton_its += res.its;
+    rec->ksp_its += res.lits;
+    if (!res.ok) {
+      PetscCall(PDModelRestoreLevels(m));
+      if (m->linear || dl * 0.5 < sc->dlambda_min) {
+        rec->converged = PETSC_FALSE;
+        PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g (%s); increment %g at its floor", (double)lam, res.why, (double)dl));
+        break;
+      }
+      dl *= 0.5;
+      PetscCall(PetscInfo(NULL, "increment to %g failed (%s): cut to %g\n", (double)lam, res.why, (double)dl));
+      continue;
     }
-    rec->steps = step;
+    PetscCall(PDModelCommitHistory(m, u));
+    PetscCall(VecCopy(u, u_n));
+    lambda_n = lam;
+    step++;
+    rec->steps              = step;
+    rec->max_events_per_its = PetscMax(rec->max_events_per_its, res.max_events);
     PetscCall(PetscTime(&now));
     row.step         = step;
-    row.lambda       = m->lambda;
-    row.newton_its   = its;
-    row.ksp_its      = lits;
-    row.broken_bonds = 0;
+    row.lambda       = lam;
+    row.newton_its   = res.its;
+    row.ksp_its      = res.lits;
+    row.broken_bonds = m->broken;
     row.wall         = now - rec->t_start;
     PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
     PetscCall(PDRecordAddRow(rec, &row));
-    PetscCall(PDProgress(comm, sc, &row, sc->steps));
-    if (FieldsDue(sc, step, step == sc->steps)) PetscCall(PDFieldsWrite(m, rec, step, u));
+    if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
+      stop = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
+    }
+    if (lambda_n >= sc->lambda_max * (1 - 1e-12)) stop = PETSC_TRUE;
+    PetscCall(PDProgress(comm, sc, &row, stop));
+    if (FieldsDue(sc, step, stop)) PetscCall(PDFieldsWrite(m, rec, step, u));
+    if (stop) break;
+    /* easy increments without bond events grow the next one */
+    if (res.stages == 0 && res.its <= 3) dl = PetscMin(2 * dl, sc->dlambda_max);
   }
+  if (!rec->converged && rec->steps > 0 && (!rec->nfield_steps || rec->field_steps[rec->nfield_steps - 1] != rec->steps)) PetscCall(PDFieldsWrite(m, rec, rec->steps, u_n));
   {
-    MatInfo     info;
-    KSP         ksp;
-    PC          pc;
-    SNESType    st;
-    KSPType     kt;
-    PCType      pt;
+    MatInfo  info;
+    KSP      ksp;
+    PC       pc;
+    SNESType st;
+    KSPType  kt;
+    PCType   pt;
     PetscCall(MatGetInfo(J, MAT_GLOBAL_SUM, &info));
     rec->matrix_nonzeros = info.nz_allocated;
     PetscCall(SNESGetType(snes, &st));
@@ -102,6 +186,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec)
   PetscCall(SNESDestroy(&snes));
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&u_n));
   PetscCall(VecDestroy(&r));
   PetscFunctionReturn(0);
 }

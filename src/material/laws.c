@@ -1,0 +1,152 @@
+/* Tension-softening bond laws (THEORY.md Sec. 3; Hobbs Sec. 5.3). All are pure functions of the
+   largest stretch kappa; the force is g = c_b (1 - d(kappa)) s.
+
+   Every formula for a critical stretch in the thesis contains pi c delta^5 (constant influence, 3D).
+   It comes from the work needed to break every bond crossing a unit area, G = geo * A, where A is the
+   area under g/c up to s_c and geo = pi c int_0^delta omega xi^4 dxi in 3D (2 t c int omega xi^3 in 2D).
+   Writing pi c delta^5 = 5 geo extends the printed formulas to other influence functions and to 2D, and
+   to a bond whose micromodulus is lambda c (Eq. 5.32 generalised): geo scales with lambda. */
+#include "pd_material.h"
+
+/* int_0^1 omega(r) r^k dr */
+static PetscReal Moment(PDInfluence w, PetscInt k)
+{
+  switch (w) {
+  case PD_INFLUENCE_CONICAL:
+    return 1.0 / (k + 1) - 1.0 / (k + 2);
+  case PD_INFLUENCE_QUARTIC:
+    return 1.0 / (k + 5) - 2.0 / (k + 3) + 1.0 / (k + 1);
+  default:
+    return 1.0 / (k + 1);
+  }
+}
+
+/* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5). */
+static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t)
+{
+  const PetscReal G = law->Gf;
+  t->s0 = t->s1 = t->sc = PETSC_MAX_REAL;
+  switch (law->kind) {
+  case PD_LAW_LINEAR:
+    t->sc = PetscSqrtReal(10 * G / pcd5);
+    t->s0 = t->s1 = t->sc;
+    break;
+  case PD_LAW_BILINEAR:
+    if (law->bobaru) {
+      t->s0 = law->ft / law->E;
+      t->sc = 10 * G / (pcd5 * t->s0);
+    } else {
+      t->s0 = PetscSqrtReal(10 * (G / law->kr) / pcd5);
+      t->sc = law->kr * t->s0;
+    }
+    t->s1 = t->sc;
+    break;
+  case PD_LAW_TRILINEAR: {
+    const PetscReal b = law->beta, gamma = (3 + 2 * b) / (2 * b * (1 - b));
+    t->s0 = law->ft / law->E;
+    t->sc = 10 * gamma * G / (pcd5 * t->s0 * (1 + gamma * b)) + t->s0;
+    t->s1 = t->s0 + (t->sc - t->s0) / gamma;
+  } break;
+  case PD_LAW_NONLINEAR: {
+    /* corrected Eq. 5.21 (THEORY.md): the printed form is too large by alpha s0. (1 - e^k)/Q is
+       evaluated as (e^-k - 1)/(Q e^-k) so that k = 25 does not overflow anything. */
+    const PetscReal k = law->k, a = law->alpha, emk = PetscExpReal(-k);
+    const PetscReal Qs = (2 * k + a * k + 2) * emk - 2 - a * k; /* Q e^-k */
+    t->s0 = law->ft / law->E;
+    t->sc = t->s0 + 10 * k * (emk - 1) * (1 + a) * G / (pcd5 * t->s0 * Qs);
+    t->s1 = t->sc;
+  } break;
+  default:
+    break;
+  }
+}
+
+PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law)
+{
+  const PetscReal delta = sc->horizon_ratio * sc->dx;
+  PetscReal       geo;
+  PDLawBond       t;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(law, sizeof *law));
+  law->kind     = mat->law;
+  law->c        = PDMicromodulus(sc, mat->E);
+  law->E        = mat->E;
+  law->ft       = mat->ft;
+  law->Gf       = mat->Gf;
+  law->kr       = mat->kr;
+  law->bobaru   = mat->bobaru;
+  law->beta     = mat->beta;
+  law->k        = mat->k;
+  law->alpha    = mat->alpha;
+  law->per_bond = sc->surface_correction && sc->sc_correction;
+  if (sc->dim == 3) geo = PETSC_PI * law->c * Moment(sc->influence, 4) * PetscPowReal(delta, 5);
+  else geo = 2 * sc->thickness * law->c * Moment(sc->influence, 3) * PetscPowReal(delta, 4);
+  law->geo = geo;
+  Thresholds(law, 5 * geo, &t);
+  law->nominal = t;
+  PetscFunctionReturn(0);
+}
+
+void PDLawBondThresholds(const PDLaw *law, PetscReal lambda, PDLawBond *t)
+{
+  Thresholds(law, 5 * law->geo * (law->per_bond ? lambda : 1), t);
+}
+
+PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, PetscReal *dd)
+{
+  const PetscReal s0 = t->s0, s1 = t->s1, sc = t->sc;
+  *dd = 0;
+  if (law->kind == PD_LAW_ELASTIC) return 0;
+  if (kappa >= sc) return 1;
+  if (law->kind == PD_LAW_LINEAR || kappa <= s0) return 0;
+  switch (law->kind) {
+  case PD_LAW_BILINEAR: /* Eq. 5.5 */
+    *dd = (s0 / (kappa * kappa)) * sc / (sc - s0);
+    return (1 - s0 / kappa) * sc / (sc - s0);
+  case PD_LAW_TRILINEAR: { /* Eqs. 5.6 to 5.15 */
+    const PetscReal b = law->beta, eta = s1 / s0;
+    if (kappa < s1) {
+      *dd = ((eta - b) / (eta - 1)) * s0 / (kappa * kappa);
+      return 1 - ((eta - b) / (eta - 1)) * (s0 / kappa) + (1 - b) / (eta - 1);
+    }
+    *dd = b * s0 * sc / ((sc - s1) * kappa * kappa);
+    return 1 - b * (s0 / kappa) * (sc - kappa) / (sc - s1);
+  }
+  case PD_LAW_NONLINEAR: { /* Eq. 5.16 */
+    const PetscReal k = law->k, a = law->alpha, x = (kappa - s0) / (sc - s0), ek = PetscExpReal(-k * x), den = 1 - PetscExpReal(-k);
+    const PetscReal h = (1 - (1 - ek) / den + a * (1 - x)) / (1 + a), dh = (-k * ek / den - a) / (1 + a);
+    *dd = (s0 / (kappa * kappa)) * h - (s0 / kappa) * dh / (sc - s0);
+    return 1 - (s0 / kappa) * h;
+  }
+  default:
+    return 0;
+  }
+}
+
+PetscReal PDLawWorkOfFracture(const PDLaw *law)
+{
+  const PetscReal s0 = law->nominal.s0, s1 = law->nominal.s1, sc = law->nominal.sc;
+  switch (law->kind) {
+  case PD_LAW_LINEAR:
+    return 0.5 * sc * sc;
+  case PD_LAW_BILINEAR:
+    return 0.5 * s0 * sc;
+  case PD_LAW_TRILINEAR:
+    return 0.5 * s0 * s0 + 0.5 * (s1 - s0) * (1 + law->beta) * s0 + 0.5 * (sc - s1) * law->beta * s0;
+  case PD_LAW_NONLINEAR: {
+    const PetscReal k = law->k, a = law->alpha, den = 1 - PetscExpReal(-k);
+    const PetscReal Ih = (1 - (1 - den / k) / den + 0.5 * a) / (1 + a); /* int_0^1 h(x) dx */
+    return 0.5 * s0 * s0 + s0 * (sc - s0) * Ih;
+  }
+  default:
+    return 0;
+  }
+}
+
+PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PDBondLevel level)
+{
+  if (law->kind == PD_LAW_ELASTIC || level == PD_BOND_BROKEN) return PETSC_MAX_REAL;
+  if (level == PD_BOND_ELASTIC && law->kind != PD_LAW_LINEAR) return t->s0;
+  return t->sc;
+}

@@ -1,0 +1,165 @@
+/* Damage limiter and bond history.
+
+   A bond event is a bond entering the softening branch for the first time (passing s0) or breaking
+   (passing sc). Within a load step the history kappa_n of the last accepted step is fixed and every
+   bond is allowed a level (elastic, softening, broken); a bond whose stretch passes the threshold of its
+   level is held there (kernel.c) and becomes a candidate. After each Newton stage the limiter lets the
+   max_events most critical candidates (largest stretch over threshold; ties by global bond id) move up
+   one level. The decision is global and deterministic: every rank proposes its own best candidates,
+   all ranks see the same merged list, so the sequence does not depend on the number of ranks. */
+#include "pd_model.h"
+#include "kernel.h"
+
+typedef struct {
+  PetscReal  crit;
+  PetscInt64 id;
+} Candidate;
+
+static int CompareCandidates(const void *pa, const void *pb)
+{
+  const Candidate *a = (const Candidate *)pa, *b = (const Candidate *)pb;
+  if (a->crit != b->crit) return a->crit > b->crit ? -1 : 1;
+  return a->id < b->id ? -1 : (a->id > b->id ? 1 : 0);
+}
+
+static int CompareIds(const void *pa, const void *pb)
+{
+  const PetscInt64 a = *(const PetscInt64 *)pa, b = *(const PetscInt64 *)pb;
+  return a < b ? -1 : (a > b ? 1 : 0);
+}
+
+/* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
+static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s)
+{
+  const PetscScalar *ul;
+  Vec                loc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
+  PetscCall(PDModelStretches(m, ul, s));
+  PetscCall(PDModelRestoreLocal(m, &ul, &loc));
+  PetscFunctionReturn(0);
+}
+
+static PetscReal Threshold(const PDModel *m, PetscInt e)
+{
+  const PDLaw *law = &m->law[m->bonds->material[e]];
+  return PDLawNextThreshold(law, m->thr ? &m->thr[e] : &law->nominal, (PDBondLevel)m->level[e]);
+}
+
+PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted)
+{
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  MPI_Comm         comm = lat->comm;
+  PetscReal       *s;
+  Candidate       *mine, *all = NULL;
+  PetscInt64      *ids = NULL;
+  PetscInt         nmine = 0, nlocal_cand = 0, ntake, nall = 0;
+  PetscMPIInt      size, nsend, *counts, *displs;
+
+  PetscFunctionBeginUser;
+  *ncandidates = *granted = 0;
+  if (!m->softening) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &s));
+  PetscCall(StretchesAt(m, u, s));
+  for (PetscInt e = 0; e < bd->nbonds; e++)
+    if (s[e] >= Threshold(m, e)) nlocal_cand++;
+  PetscCall(PetscMalloc1(PetscMax(1, nlocal_cand), &mine));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscReal t = Threshold(m, e);
+    if (s[e] >= t && PDBondCountedHere(lat, bd, e)) {
+      mine[nmine].crit = s[e] / t;
+      mine[nmine].id   = PDBondGlobalId(lat, bd, e);
+      nmine++;
+    }
+  }
+  PetscCall(MPIU_Allreduce(&nmine, ncandidates, 1, MPIU_INT, MPI_SUM, comm));
+  if (*ncandidates == 0) {
+    PetscCall(PetscFree(mine));
+    PetscCall(PetscFree(s));
+    PetscFunctionReturn(0);
+  }
+  if (max_events == 0 || *ncandidates <= max_events) {
+    /* every candidate goes: each rank decides its own copies alike, no exchange needed */
+    for (PetscInt e = 0; e < bd->nbonds; e++)
+      if (s[e] >= Threshold(m, e)) m->level[e]++;
+    *granted = *ncandidates;
+  } else {
+    /* each rank's best max_events cover the global best max_events */
+    qsort(mine, (size_t)nmine, sizeof(Candidate), CompareCandidates);
+    ntake = PetscMin(nmine, max_events);
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCall(PetscMalloc2(size, &counts, size, &displs));
+    nsend = (PetscMPIInt)(ntake * (PetscInt)sizeof(Candidate));
+    PetscCallMPI(MPI_Allgather(&nsend, 1, MPI_INT, counts, 1, MPI_INT, comm));
+    displs[0] = 0;
+    for (PetscMPIInt r = 1; r < size; r++) displs[r] = displs[r - 1] + counts[r - 1];
+    nall = (displs[size - 1] + counts[size - 1]) / (PetscInt)sizeof(Candidate);
+    PetscCall(PetscMalloc2(nall, &all, max_events, &ids));
+    PetscCallMPI(MPI_Allgatherv(mine, nsend, MPI_BYTE, all, counts, displs, MPI_BYTE, comm));
+    qsort(all, (size_t)nall, sizeof(Candidate), CompareCandidates);
+    for (PetscInt k = 0; k < max_events; k++) ids[k] = all[k].id;
+    qsort(ids, (size_t)max_events, sizeof(PetscInt64), CompareIds);
+    for (PetscInt e = 0; e < bd->nbonds; e++) {
+      PetscInt64 id;
+      if (s[e] < Threshold(m, e)) continue;
+      id = PDBondGlobalId(lat, bd, e);
+      if (bsearch(&id, ids, (size_t)max_events, sizeof(PetscInt64), CompareIds)) m->level[e]++;
+    }
+    *granted = max_events;
+    PetscCall(PetscFree2(all, ids));
+    PetscCall(PetscFree2(counts, displs));
+  }
+  PetscCall(PetscFree(mine));
+  PetscCall(PetscFree(s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u)
+{
+  const PDBonds *bd = m->bonds;
+  PetscReal     *s;
+  PetscInt       broken = 0;
+
+  PetscFunctionBeginUser;
+  if (!m->softening) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &s));
+  PetscCall(StretchesAt(m, u, s));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PDLaw     *law = &m->law[bd->material[e]];
+    const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+    const PetscReal  cap = Threshold(m, e);
+    m->kappa[e]          = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
+    m->level_n[e]        = m->level[e];
+    if (law->kind != PD_LAW_ELASTIC && m->kappa[e] >= t->sc && PDBondCountedHere(m->lat, bd, e)) broken++;
+  }
+  PetscCall(MPIU_Allreduce(&broken, &m->broken, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  PetscCall(PetscFree(s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelRestoreLevels(PDModel *m)
+{
+  PetscFunctionBeginUser;
+  if (m->softening) PetscCall(PetscArraycpy(m->level, m->level_n, m->bonds->nbonds));
+  PetscFunctionReturn(0);
+}
+
+/* Nodal damage: the mean damage of a node's bonds (0 intact, 1 all broken). */
+PetscErrorCode PDModelNodalDamage(PDModel *m, Vec damage)
+{
+  const PDBonds *bd = m->bonds;
+  PetscScalar   *d;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(damage, &d));
+  for (PetscInt i = 0; i < m->lat->nowned; i++) {
+    const PetscInt n = bd->inc_start[i + 1] - bd->inc_start[i];
+    PetscReal      sum = 0;
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) sum += PDModelBondDamage(m, bd->inc_bond[p]);
+    d[i] = n ? sum / n : 1;
+  }
+  PetscCall(VecRestoreArray(damage, &d));
+  PetscFunctionReturn(0);
+}
