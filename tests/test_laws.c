@@ -1,20 +1,7 @@
 /* Bond laws against the Hobbs thesis Tables 5.1 and 7.2, hand-computed points, irreversibility and
    the work of fracture. */
 #include "pd_material.h"
-
-static int failures = 0, passes = 0;
-
-static void Check(PetscBool ok, const char *what, double got, double want)
-{
-  PetscPrintf(PETSC_COMM_SELF, "%s %-58s got %.6e want %.6e\n", ok ? "ok  " : "FAIL", what, got, want);
-  if (ok) passes++;
-  else failures++;
-}
-
-static void Rel(const char *what, double got, double want, double tol)
-{
-  Check(PetscAbsReal(got - want) <= tol * PetscAbsReal(want) ? PETSC_TRUE : PETSC_FALSE, what, got, want);
-}
+#include "check.h"
 
 /* Printed with 3 significant digits: the value must round to the printed one. */
 static void ThreeDigits(const char *what, double got, double printed)
@@ -83,10 +70,10 @@ int main(int argc, char **argv)
      to 0.2 % and sc to 1 %, the spread of the printed values themselves. */
   MakeLaw(PD_LAW_BILINEAR, 30.5e9, 133, 11.5e-3, 3.14, &law);
   ThreeDigits("Table 7.2 dx 11.5 mm s0 = 6.34e-5", law.nominal.s0, 6.34e-5);
-  Rel("Table 7.2 dx 11.5 mm sc = 1.60e-3 (1 %)", law.nominal.sc, 1.60e-3, 0.01);
+  CheckRel("Table 7.2 dx 11.5 mm sc = 1.60e-3 (1 %)", law.nominal.sc, 1.60e-3, 0.01);
   MakeLaw(PD_LAW_BILINEAR, 30.5e9, 133, 7.67e-3, 3.14, &law);
-  Rel("Table 7.2 dx 7.67 mm s0 = 7.78e-5 (0.2 %)", law.nominal.s0, 7.78e-5, 0.002);
-  Rel("Table 7.2 dx 7.67 mm sc = 1.95e-3 (1 %)", law.nominal.sc, 1.95e-3, 0.01);
+  CheckRel("Table 7.2 dx 7.67 mm s0 = 7.78e-5 (0.2 %)", law.nominal.s0, 7.78e-5, 0.002);
+  CheckRel("Table 7.2 dx 7.67 mm sc = 1.95e-3 (1 %)", law.nominal.sc, 1.95e-3, 0.01);
 
   for (PetscInt k = 0; k < 4; k++) {
     char      what[128];
@@ -104,12 +91,12 @@ int main(int argc, char **argv)
       fprev = f;
     }
     PetscCall(PetscSNPrintf(what, sizeof what, "%s: integral of g/c to sc = closed form", names[k]));
-    Rel(what, W, PDLawWorkOfFracture(&law), 1e-4);
+    CheckRel(what, W, PDLawWorkOfFracture(&law), 1e-4);
     {
       const PetscBool soft_only = kinds[k] == PD_LAW_TRILINEAR || kinds[k] == PD_LAW_NONLINEAR;
       const PetscReal A         = PDLawWorkOfFracture(&law) - (soft_only ? 0.5 * law.nominal.s0 * law.nominal.s0 : 0);
       PetscCall(PetscSNPrintf(what, sizeof what, "%s: geo * %s = G_F", names[k], soft_only ? "(A - s0^2/2)" : "A"));
-      Rel(what, law.geo * A, 143.2, 1e-9);
+      CheckRel(what, law.geo * A, 143.2, 1e-9);
     }
     /* unloading and reloading below kappa follow the secant; damage never decreases */
     if (kinds[k] != PD_LAW_LINEAR) {
@@ -120,15 +107,15 @@ int main(int argc, char **argv)
       d1    = PDLawDamage(&law, &law.nominal, kappa, &dd);
       f2    = Force(&law, &kappa, 0.5 * smax); /* unload to half */
       PetscCall(PetscSNPrintf(what, sizeof what, "%s: unloading to s/2 halves the force (secant)", names[k]));
-      Rel(what, f2, 0.5 * f1, 1e-12);
+      CheckRel(what, f2, 0.5 * f1, 1e-12);
       f3 = Force(&law, &kappa, smax); /* reload */
       PetscCall(PetscSNPrintf(what, sizeof what, "%s: reloading returns to the same point", names[k]));
-      Rel(what, f3, f1, 1e-12);
+      CheckRel(what, f3, f1, 1e-12);
       d = PDLawDamage(&law, &law.nominal, kappa, &dd);
       PetscCall(PetscSNPrintf(what, sizeof what, "%s: damage unchanged by the unload-reload cycle", names[k]));
-      Rel(what, d, d1, 1e-14);
+      CheckRel(what, d, d1, 1e-14);
       PetscCall(PetscSNPrintf(what, sizeof what, "%s: compression is linear, undamaged", names[k]));
-      Rel(what, Force(&law, &kappa, -1e-4), -1e-4, 1e-14);
+      CheckRel(what, Force(&law, &kappa, -1e-4), -1e-4, 1e-14);
       /* damage derivative against a central difference */
       {
         const PetscReal s = 0.3 * law.nominal.s0 + 0.7 * law.nominal.sc, h = 1e-7 * s;
@@ -137,7 +124,7 @@ int main(int argc, char **argv)
         dp = PDLawDamage(&law, &law.nominal, s + h, &dd);
         dm = PDLawDamage(&law, &law.nominal, s - h, &dd);
         PetscCall(PetscSNPrintf(what, sizeof what, "%s: d'(kappa) against finite difference", names[k]));
-        Rel(what, dx, (dp - dm) / (2 * h), 1e-6);
+        CheckRel(what, dx, (dp - dm) / (2 * h), 1e-6);
       }
     }
   }
@@ -145,30 +132,32 @@ int main(int argc, char **argv)
   MakeLaw(PD_LAW_BILINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);
   {
     PetscReal kappa = 0, s0 = law.nominal.s0, sc = law.nominal.sc;
-    Rel("bilinear: g(s0)/c = s0", Force(&law, &kappa, s0), s0, 1e-12);
-    Rel("bilinear: g((s0+sc)/2)/c = s0/2", Force(&law, &kappa, 0.5 * (s0 + sc)), 0.5 * s0, 1e-12);
+    CheckRel("bilinear: g(s0)/c = s0", Force(&law, &kappa, s0), s0, 1e-12);
+    CheckRel("bilinear: g((s0+sc)/2)/c = s0/2", Force(&law, &kappa, 0.5 * (s0 + sc)), 0.5 * s0, 1e-12);
     Check(Force(&law, &kappa, sc) == 0 ? PETSC_TRUE : PETSC_FALSE, "bilinear: g(sc) = 0, broken", 0, 0);
     Check(Force(&law, &kappa, 0.5 * s0) == 0 ? PETSC_TRUE : PETSC_FALSE, "bilinear: a broken bond carries no tension", 0, 0);
   }
   MakeLaw(PD_LAW_TRILINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);
   {
     PetscReal kappa = 0;
-    Rel("trilinear: g(s1)/c = beta s0", Force(&law, &kappa, law.nominal.s1), 0.25 * law.nominal.s0, 1e-12);
+    CheckRel("trilinear: g(s1)/c = beta s0", Force(&law, &kappa, law.nominal.s1), 0.25 * law.nominal.s0, 1e-12);
   }
   MakeLaw(PD_LAW_NONLINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);
   {
     PetscReal       kappa = 0;
     const PetscReal s0 = law.nominal.s0, sc = law.nominal.sc, x = 0.5;
     const PetscReal h  = (1 - (1 - PetscExpReal(-25 * x)) / (1 - PetscExpReal(-25.0)) + 0.25 * (1 - x)) / 1.25;
-    Rel("nonlinear: g at x = 1/2 (Eq. 5.16 by hand)", Force(&law, &kappa, s0 + x * (sc - s0)), s0 * h, 1e-12);
+    CheckRel("nonlinear: g at x = 1/2 (Eq. 5.16 by hand)", Force(&law, &kappa, s0 + x * (sc - s0)), s0 * h, 1e-12);
   }
   MakeLaw(PD_LAW_LINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);
   {
     PetscReal kappa = 0, sc = law.nominal.sc;
-    Rel("linear: elastic just below sc", Force(&law, &kappa, 0.999 * sc), 0.999 * sc, 1e-12);
+    CheckRel("linear: elastic just below sc", Force(&law, &kappa, 0.999 * sc), 0.999 * sc, 1e-12);
     Check(Force(&law, &kappa, sc) == 0 ? PETSC_TRUE : PETSC_FALSE, "linear: broken at sc", 0, 0);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d passed, %d failed\n", passes, failures));
-  PetscCall(PetscFinalize());
-  return failures ? 1 : 0;
+  {
+    const int rc = CheckSummary();
+    PetscCall(PetscFinalize());
+    return rc;
+  }
 }

@@ -1,20 +1,7 @@
 /* Unit tests of the pure functions: micromodulus constants (Hobbs Table 3.1, Eq. 3.27/3.28),
    influence functions and the node-selection rule of regions. */
 #include "pd_material.h"
-
-static int failures = 0, passes = 0;
-
-static void Expect(PetscBool ok, const char *what, double got, double want)
-{
-  PetscPrintf(PETSC_COMM_SELF, "%s %-60s got %.10g want %.10g\n", ok ? "ok  " : "FAIL", what, got, want);
-  if (ok) passes++;
-  else failures++;
-}
-
-static void ExpectRel(const char *what, double got, double want, double tol)
-{
-  Expect(PetscAbsReal(got - want) <= tol * PetscAbsReal(want) ? PETSC_TRUE : PETSC_FALSE, what, got, want);
-}
+#include "check.h"
 
 int main(int argc, char **argv)
 {
@@ -29,37 +16,39 @@ int main(int argc, char **argv)
   sc.model         = PD_MODEL_3D;
   sc.dim           = 3;
   sc.influence     = PD_INFLUENCE_CONSTANT;
-  ExpectRel("3D constant c = 12E/(pi d^4)", PDMicromodulus(&sc, E), 12 * E / (PETSC_PI * d * d * d * d), 1e-12);
+  CheckRel("3D constant c = 12E/(pi d^4)", PDMicromodulus(&sc, E), 12 * E / (PETSC_PI * d * d * d * d), 1e-12);
   sc.influence = PD_INFLUENCE_CONICAL;
-  ExpectRel("3D conical c0 = 60E/(pi d^4)", PDMicromodulus(&sc, E), 60 * E / (PETSC_PI * d * d * d * d), 1e-12);
+  CheckRel("3D conical c0 = 60E/(pi d^4)", PDMicromodulus(&sc, E), 60 * E / (PETSC_PI * d * d * d * d), 1e-12);
   sc.influence = PD_INFLUENCE_QUARTIC;
-  ExpectRel("3D quartic c0 = 72E/(pi d^4)", PDMicromodulus(&sc, E), 72 * E / (PETSC_PI * d * d * d * d), 1e-12);
+  CheckRel("3D quartic c0 = 72E/(pi d^4)", PDMicromodulus(&sc, E), 72 * E / (PETSC_PI * d * d * d * d), 1e-12);
   sc.influence = PD_INFLUENCE_CONSTANT;
   sc.model     = PD_MODEL_PLANE_STRESS;
-  ExpectRel("plane stress c = 9E/(pi t d^3)", PDMicromodulus(&sc, E), 9 * E / (PETSC_PI * t * d * d * d), 1e-12);
+  CheckRel("plane stress c = 9E/(pi t d^3)", PDMicromodulus(&sc, E), 9 * E / (PETSC_PI * t * d * d * d), 1e-12);
   sc.model = PD_MODEL_PLANE_STRAIN;
-  ExpectRel("plane strain c = 48E/(5 pi t d^3)", PDMicromodulus(&sc, E), 48 * E / (5 * PETSC_PI * t * d * d * d), 1e-12);
+  CheckRel("plane strain c = 48E/(5 pi t d^3)", PDMicromodulus(&sc, E), 48 * E / (5 * PETSC_PI * t * d * d * d), 1e-12);
 
-  ExpectRel("conical omega(d/2) = 1/2", PDInfluenceValue(PD_INFLUENCE_CONICAL, d / 2, d), 0.5, 1e-14);
-  ExpectRel("quartic omega(d/2) = 9/16", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d / 2, d), 9.0 / 16.0, 1e-14);
-  Expect(PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d) == 0 ? PETSC_TRUE : PETSC_FALSE, "quartic omega(d) = 0", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d), 0);
+  CheckRel("conical omega(d/2) = 1/2", PDInfluenceValue(PD_INFLUENCE_CONICAL, d / 2, d), 0.5, 1e-14);
+  CheckRel("quartic omega(d/2) = 9/16", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d / 2, d), 9.0 / 16.0, 1e-14);
+  Check(PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d) == 0 ? PETSC_TRUE : PETSC_FALSE, "quartic omega(d) = 0", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d), 0);
 
   {
     /* a box flat in x selects the nodes within dx/2 of its plane; a solid box its interior */
     PDGeometry g    = {PD_SHAPE_BOX, {0.025, 0, 0, 0.025, 0.05, 0}, 0, {0, 0, 0}, 0};
     PetscReal  in[3] = {0.0275, 0.01, 0.0025}, edge[3] = {0.0225, 0.01, 0.0025}, out[3] = {0.0325, 0.01, 0.0025}, up[3] = {0.0275, 0.01, 0.0075};
-    Expect(PDGeometryContains(&g, in, dx, 3), "flat box holds node dx/2 to the right", 1, 1);
-    Expect(PDGeometryContains(&g, edge, dx, 3), "flat box holds node dx/2 to the left", 1, 1);
-    Expect(!PDGeometryContains(&g, out, dx, 3), "flat box drops node 3dx/2 away", 0, 0);
-    Expect(!PDGeometryContains(&g, up, dx, 3), "flat box drops the second layer up", 0, 0);
+    Check(PDGeometryContains(&g, in, dx, 3), "flat box holds node dx/2 to the right", 1, 1);
+    Check(PDGeometryContains(&g, edge, dx, 3), "flat box holds node dx/2 to the left", 1, 1);
+    Check(!PDGeometryContains(&g, out, dx, 3), "flat box drops node 3dx/2 away", 0, 0);
+    Check(!PDGeometryContains(&g, up, dx, 3), "flat box drops the second layer up", 0, 0);
   }
   {
     PDGeometry c     = {PD_SHAPE_CYLINDER, {0, 0, 0, 0, 0, 0}, 1, {0.1, 0, 0.05}, 0.01};
     PetscReal  a[3] = {0.105, 3.0, 0.055}, b[3] = {0.115, 0.0, 0.05};
-    Expect(PDGeometryContains(&c, a, dx, 3), "cylinder along y holds a point at r = 7 mm", 1, 1);
-    Expect(!PDGeometryContains(&c, b, dx, 3), "cylinder along y drops a point at r = 15 mm", 0, 0);
+    Check(PDGeometryContains(&c, a, dx, 3), "cylinder along y holds a point at r = 7 mm", 1, 1);
+    Check(!PDGeometryContains(&c, b, dx, 3), "cylinder along y drops a point at r = 15 mm", 0, 0);
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%d passed, %d failed\n", passes, failures));
-  PetscCall(PetscFinalize());
-  return failures ? 1 : 0;
+  {
+    const int rc = CheckSummary();
+    PetscCall(PetscFinalize());
+    return rc;
+  }
 }

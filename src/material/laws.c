@@ -8,19 +8,6 @@
    to a bond whose micromodulus is lambda c (Eq. 5.32 generalised): geo scales with lambda. */
 #include "pd_material.h"
 
-/* int_0^1 omega(r) r^k dr */
-static PetscReal Moment(PDInfluence w, PetscInt k)
-{
-  switch (w) {
-  case PD_INFLUENCE_CONICAL:
-    return 1.0 / (k + 1) - 1.0 / (k + 2);
-  case PD_INFLUENCE_QUARTIC:
-    return 1.0 / (k + 5) - 2.0 / (k + 3) + 1.0 / (k + 1);
-  default:
-    return 1.0 / (k + 1);
-  }
-}
-
 /* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5). */
 static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t)
 {
@@ -80,8 +67,8 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law)
   law->k        = mat->k;
   law->alpha    = mat->alpha;
   law->per_bond = sc->surface_correction && sc->sc_correction;
-  if (sc->dim == 3) geo = PETSC_PI * law->c * Moment(sc->influence, 4) * PetscPowReal(delta, 5);
-  else geo = 2 * sc->thickness * law->c * Moment(sc->influence, 3) * PetscPowReal(delta, 4);
+  if (sc->dim == 3) geo = PETSC_PI * law->c * PDInfluenceMoment(sc->influence, 4) * PetscPowReal(delta, 5);
+  else geo = 2 * sc->thickness * law->c * PDInfluenceMoment(sc->influence, 3) * PetscPowReal(delta, 4);
   law->geo = geo;
   Thresholds(law, 5 * geo, &t);
   law->nominal = t;

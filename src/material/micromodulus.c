@@ -17,8 +17,8 @@ PetscReal PDInfluenceValue(PDInfluence w, PetscReal len, PetscReal horizon)
   }
 }
 
-/* Moments int_0^1 omega(r) r^k dr of the influence functions, for k = 2 and 3. */
-static PetscReal InfluenceMoment(PDInfluence w, PetscInt k)
+/* Moments int_0^1 omega(r) r^k dr of the influence functions. */
+PetscReal PDInfluenceMoment(PDInfluence w, PetscInt k)
 {
   switch (w) {
   case PD_INFLUENCE_CONICAL:
@@ -35,10 +35,10 @@ PetscReal PDMicromodulus(const PDScene *sc, PetscReal E)
   const PetscReal delta = sc->horizon_ratio * sc->dx;
   switch (sc->model) {
   case PD_MODEL_PLANE_STRESS:
-    return 3 * E / (PETSC_PI * sc->thickness * InfluenceMoment(sc->influence, 2) * delta * delta * delta);
+    return 3 * E / (PETSC_PI * sc->thickness * PDInfluenceMoment(sc->influence, 2) * delta * delta * delta);
   case PD_MODEL_PLANE_STRAIN:
-    return 16 * E / (5 * PETSC_PI * sc->thickness * InfluenceMoment(sc->influence, 2) * delta * delta * delta);
+    return 16 * E / (5 * PETSC_PI * sc->thickness * PDInfluenceMoment(sc->influence, 2) * delta * delta * delta);
   default:
-    return 3 * E / (PETSC_PI * InfluenceMoment(sc->influence, 3) * delta * delta * delta * delta);
+    return 3 * E / (PETSC_PI * PDInfluenceMoment(sc->influence, 3) * delta * delta * delta * delta);
   }
 }
