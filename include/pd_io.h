@@ -17,10 +17,10 @@ typedef struct {
   char        status[256];
   PetscReal   t_setup, t_assembly, t_solve, t_output, t_start;
   PetscInt    nfield_steps;
-  PetscInt   *field_steps; /* steps whose fields were written */
-  PetscViewer h5;          /* open HDF5 viewer on the temporary fields file */
+  PetscInt   *field_steps;     /* steps whose fields were written */
+  PetscViewer h5;              /* open HDF5 viewer on the temporary fields file */
   PetscReal   matrix_nonzeros; /* stored scalar entries of the stiffness */
-  char        solver[128]; /* snes/ksp/pc types actually used */
+  char        solver[128];     /* snes/ksp/pc types actually used */
   char        dir[PETSC_MAX_PATH_LEN];
 } PDRecord;
 

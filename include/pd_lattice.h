@@ -28,11 +28,11 @@ typedef struct {
   PetscReal *coef;          /* [nbonds] c * omega * beta * lambda * V_a * V_b (N per unit stretch) */
   PetscInt  *material;      /* [nbonds] material governing the bond */
   /* incidence of owned nodes, neighbours sorted by global id: rows of the stiffness */
-  PetscInt  *inc_start; /* [nowned+1] */
-  PetscInt  *inc_bond;  /* bond index */
-  PetscInt   ncut;      /* bonds removed by notches (global) */
+  PetscInt  *inc_start;              /* [nowned+1] */
+  PetscInt  *inc_bond;               /* bond index */
+  PetscInt   ncut;                   /* bonds removed by notches (global) */
   PetscReal  lambda_min, lambda_max; /* surface-correction range (global) */
-  PetscReal *lambda;        /* [nbonds] surface-correction factor, kept only for per-bond critical stretches */
+  PetscReal *lambda;                 /* [nbonds] surface-correction factor, kept only for per-bond critical stretches */
 } PDBonds;
 
 PetscErrorCode PDLatticeCreate(MPI_Comm, const PDScene *, PDLattice *);
@@ -41,7 +41,7 @@ PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *, PetscInt bs, Vec *);
 PetscInt       PDLatticeNearestNode(const PDLattice *, const PetscReal p[3]);
 PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PetscBool keep_lambda, PDBonds *);
 /* Global id of a bond (same on every rank): lower node id times N plus the higher one. */
-PetscInt64     PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);
+PetscInt64 PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);
 /* True on exactly one rank for every bond: the rank that owns its lower-id end. */
 PetscBool      PDBondCountedHere(const PDLattice *, const PDBonds *, PetscInt e);
 PetscErrorCode PDBondsDestroy(PDBonds *);

@@ -18,15 +18,15 @@ typedef struct {
    kappa the largest stretch reached; d is irreversible, unloading follows the secant. */
 typedef struct {
   PDLawKind kind;
-  PetscReal c;          /* micromodulus c0 of the material (influence-normalised) */
-  PetscReal E, ft, Gf;  /* modulus, tensile strength, fracture energy */
-  PetscReal geo;        /* pi * c * 5 * int_0^delta omega xi^4 dxi: pi c delta^5 for constant influence */
-  PDLawBond nominal;    /* thresholds of a bulk bond (lambda = 1) */
-  PetscReal kr;         /* bilinear sc/s0 (Zaccariotto) */
-  PetscBool bobaru;     /* bilinear form: s0 = ft/E */
-  PetscReal beta;       /* trilinear force ratio at s1 */
-  PetscReal k, alpha;   /* non-linear law shape */
-  PetscBool per_bond;   /* critical stretch from lambda_ij c (Eq. 5.32 generalised) */
+  PetscReal c;         /* micromodulus c0 of the material (influence-normalised) */
+  PetscReal E, ft, Gf; /* modulus, tensile strength, fracture energy */
+  PetscReal geo;       /* pi * c * 5 * int_0^delta omega xi^4 dxi: pi c delta^5 for constant influence */
+  PDLawBond nominal;   /* thresholds of a bulk bond (lambda = 1) */
+  PetscReal kr;        /* bilinear sc/s0 (Zaccariotto) */
+  PetscBool bobaru;    /* bilinear form: s0 = ft/E */
+  PetscReal beta;      /* trilinear force ratio at s1 */
+  PetscReal k, alpha;  /* non-linear law shape */
+  PetscBool per_bond;  /* critical stretch from lambda_ij c (Eq. 5.32 generalised) */
 } PDLaw;
 
 PetscErrorCode PDLawSetUp(const PDScene *, const PDMaterial *, PDLaw *);

@@ -8,39 +8,39 @@ typedef struct {
   const PDScene   *scene;
   const PDLattice *lat;
   const PDBonds   *bonds;
-  PetscInt         bs;        /* dofs per node: 2 or 3 */
-  PetscBool        linear;    /* elastic law with small kinematics: K u = f, one solve per step */
-  PetscReal        lambda;    /* current load factor */
-  PetscReal        bc_scale;  /* diagonal given to constrained dofs, of the order of a bond stiffness */
+  PetscInt         bs;          /* dofs per node: 2 or 3 */
+  PetscBool        linear;      /* elastic law with small kinematics: K u = f, one solve per step */
+  PetscReal        lambda;      /* current load factor */
+  PetscReal        bc_scale;    /* diagonal given to constrained dofs, of the order of a bond stiffness */
   PetscReal        force_scale; /* size of the load at lambda = 1 (N), for absolute tolerances */
-  Vec              u_local;   /* ghosted work copy of the displacement */
-  Vec              f_local;   /* ghosted work vector for internal forces */
-  PetscReal       *ka, *kb;   /* per-bond tangent scalars; NULL while the tangent is constant */
+  Vec              u_local;     /* ghosted work copy of the displacement */
+  Vec              f_local;     /* ghosted work vector for internal forces */
+  PetscReal       *ka, *kb;     /* per-bond tangent scalars; NULL while the tangent is constant */
   PDLaw            law[PD_MAX_MATERIALS];
-  PetscBool        softening;  /* some bond law softens or breaks: bonds carry history */
+  PetscBool        softening; /* some bond law softens or breaks: bonds carry history */
   /* per-bond history, allocated only when softening */
-  PetscReal       *kappa;      /* largest stretch reached, committed at accepted steps */
-  unsigned char   *level;      /* PDBondLevel the limiter allows the bond to reach */
-  unsigned char   *level_n;    /* levels at the last accepted step, to restart a step */
-  PDLawBond       *thr;        /* per-bond thresholds (critical-stretch correction), or NULL */
-  PetscInt         broken;     /* bonds broken (global, counted once) at the last accepted step */
-  PetscInt         nregularised, max_regularised; /* free dofs left without stiffness by damage */
-  Vec              f_ref;     /* external force at load factor 1 (global) */
-  Vec              u_ref;     /* prescribed displacement at load factor 1 (global, zero on free dofs) */
-  Vec              fixed;     /* 1 on constrained dofs, 0 elsewhere (global) */
-  PetscBool       *fixed_local; /* [bs*nlocal] constrained flags including ghosts */
-  PetscReal       *uref_local;  /* [bs*nlocal] prescribed values at load factor 1 including ghosts */
-  Vec              load_pattern;  /* unit direction on the load region's nodes */
-  Vec              disp_pattern;  /* unit direction / count on the displacement region's nodes */
-  Vec              cmod_pattern;  /* -e on gauge point 1, +e on gauge point 2 */
-  PetscReal        load_sign_force; /* 1 when the load region applies a force (curve load = lambda |F|) */
-  PetscReal        force_magnitude;
-  PetscInt         nconstrained;    /* global constrained dofs */
-  PetscInt         nisolated;       /* global nodes without any bond, pinned */
-  PetscInt         nzero_dofs;      /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
-  PetscInt64       history_bytes;   /* per-bond history storage allocated (0 for elastic scenes) */
-  PetscInt         jacobian_assemblies;
-  PetscReal        t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
+  PetscReal     *kappa;                         /* largest stretch reached, committed at accepted steps */
+  unsigned char *level;                         /* PDBondLevel the limiter allows the bond to reach */
+  unsigned char *level_n;                       /* levels at the last accepted step, to restart a step */
+  PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
+  PetscInt       nregularised, max_regularised; /* free dofs left without stiffness by damage */
+  Vec            f_ref;                         /* external force at load factor 1 (global) */
+  Vec            u_ref;                         /* prescribed displacement at load factor 1 (global, zero on free dofs) */
+  Vec            fixed;                         /* 1 on constrained dofs, 0 elsewhere (global) */
+  PetscBool     *fixed_local;                   /* [bs*nlocal] constrained flags including ghosts */
+  PetscReal     *uref_local;                    /* [bs*nlocal] prescribed values at load factor 1 including ghosts */
+  Vec            load_pattern;                  /* unit direction on the load region's nodes */
+  Vec            disp_pattern;                  /* unit direction / count on the displacement region's nodes */
+  Vec            cmod_pattern;                  /* -e on gauge point 1, +e on gauge point 2 */
+  PetscReal      load_sign_force;               /* 1 when the load region applies a force (curve load = lambda |F|) */
+  PetscReal      force_magnitude;
+  PetscInt       nconstrained;  /* global constrained dofs */
+  PetscInt       nisolated;     /* global nodes without any bond, pinned */
+  PetscInt       nzero_dofs;    /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
+  PetscInt64     history_bytes; /* per-bond history storage allocated (0 for elastic scenes) */
+  PetscInt       jacobian_assemblies;
+  PetscReal      t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
 } PDModel;
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);

@@ -6,9 +6,9 @@
 #define PD_NAN ((PetscReal)NAN) /* PETSc 3.18 has no NaN constant */
 
 #define PD_MAX_MATERIALS 8
-#define PD_MAX_NOTCHES   8
-#define PD_MAX_REGIONS   16
-#define PD_NAME_LEN      256
+#define PD_MAX_NOTCHES 8
+#define PD_MAX_REGIONS 16
+#define PD_NAME_LEN 256
 
 typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
 typedef enum { PD_INFLUENCE_CONSTANT, PD_INFLUENCE_CONICAL, PD_INFLUENCE_QUARTIC } PDInfluence;
@@ -45,11 +45,11 @@ typedef struct {
   PDGeometry where;      /* material 0 covers the whole domain */
   PetscReal  E, rho;
   PDLawKind  law;
-  PetscReal  ft, Gf;      /* tensile strength (Pa), fracture energy (N/m) */
-  PetscReal  kr;          /* bilinear sc/s0 (Zaccariotto form) */
-  PetscBool  bobaru;      /* bilinear in the Bobaru form, s0 = ft/E */
-  PetscReal  beta;        /* trilinear */
-  PetscReal  k, alpha;    /* non-linear */
+  PetscReal  ft, Gf;   /* tensile strength (Pa), fracture energy (N/m) */
+  PetscReal  kr;       /* bilinear sc/s0 (Zaccariotto form) */
+  PetscBool  bobaru;   /* bilinear in the Bobaru form, s0 = ft/E */
+  PetscReal  beta;     /* trilinear */
+  PetscReal  k, alpha; /* non-linear */
 } PDMaterial;
 
 typedef struct {
@@ -82,17 +82,17 @@ typedef struct {
   PetscBool    sc_correction; /* per-bond critical stretch from lambda_ij c */
   PDControl    control;
   PDTangent    tangent;
-  PetscInt     limiter_max;    /* bond events granted per Newton iteration; 0: no cap */
+  PetscInt     limiter_max;       /* bond events granted per Newton iteration; 0: no cap */
   PetscInt     limiter_stage_its; /* Newton iterations between grants while events are pending */
-  PetscReal    lambda_max;     /* end of the load path */
+  PetscReal    lambda_max;        /* end of the load path */
   PetscReal    dlambda_min, dlambda_max;
-  PetscReal    stop_cmod;      /* stop once the CMOD gauge opens this much (m); 0: off */
+  PetscReal    stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
   PetscInt     nmaterials, nnotches, nregions;
   PDMaterial   material[PD_MAX_MATERIALS];
   PDNotch      notch[PD_MAX_NOTCHES];
   PDRegion     region[PD_MAX_REGIONS];
-  PetscInt     load_region;  /* region whose force or reaction is the curve's load */
-  PetscInt     disp_region;  /* region whose mean displacement is the curve's displacement */
+  PetscInt     load_region; /* region whose force or reaction is the curve's load */
+  PetscInt     disp_region; /* region whose mean displacement is the curve's displacement */
   PetscBool    has_cmod;
   PetscReal    cmod[6]; /* two gauge points */
   PetscInt     steps;   /* load steps */

@@ -5,8 +5,8 @@ static const char help[] = "pdimplicit: implicit quasi-static bond-based peridyn
 #include "pd_solve.h"
 
 /* Everything a scene can get wrong is found here, before any output exists. */
-static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, PDBonds *bonds, PDModel *model, PDRecord *rec, PetscBool *dry_run)
-{
+static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, PDBonds *bonds, PDModel *model, PDRecord *rec,
+                                   PetscBool *dry_run) {
   PetscLogDouble t0, t1;
 
   PetscFunctionBeginUser;
@@ -27,8 +27,7 @@ static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, P
   PetscFunctionReturn(0);
 }
 
-int main(int argc, char **argv)
-{
+int main(int argc, char **argv) {
   PDScene        sc;
   PDLattice      lat;
   PDBonds        bonds;
@@ -56,15 +55,20 @@ int main(int argc, char **argv)
     }
   }
   PetscCall(PDSceneView(&sc, PETSC_VIEWER_STDOUT_(comm)));
-  PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " nodes, %" PetscInt_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT " constrained dofs, set-up %.3f s\n",
+  PetscCall(PetscPrintf(comm,
+                        "  %" PetscInt_FMT " nodes, %" PetscInt_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT
+                        " constrained dofs, set-up %.3f s\n",
                         lat.nglobal, bonds.nbonds_global, bonds.ncut, model.nconstrained, (double)rec.t_setup));
   PetscCall(PetscPrintf(comm, "  effects: elasticity%s\n", sc.kinematics == PD_KINEMATICS_FINITE ? ", geometric_nonlinearity" : ""));
   if (model.nzero_dofs)
-    PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " dofs without stiffness pinned (%" PetscInt_FMT " nodes without any bond)\n", model.nzero_dofs, model.nisolated));
+    PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " dofs without stiffness pinned (%" PetscInt_FMT " nodes without any bond)\n",
+                          model.nzero_dofs, model.nisolated));
   PetscCall(PDOutputPrepare(comm, &sc, &rec));
-  if (!dry_run) PetscCall(PDStaticRun(&model, &rec));
-  else PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));
-  converged = dry_run ? PETSC_TRUE : rec.converged;
+  if (!dry_run)
+    PetscCall(PDStaticRun(&model, &rec));
+  else
+    PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));
+  converged     = dry_run ? PETSC_TRUE : rec.converged;
   rec.converged = converged;
   PetscCall(PetscTime(&t0));
   PetscCall(PDFieldsFinish(&model, &rec));
@@ -73,8 +77,9 @@ int main(int argc, char **argv)
   PetscCall(PetscTime(&t1));
   rec.t_output += t1 - t0;
   PetscCall(PDSummaryWrite(comm, &model, &rec));
-  PetscCall(PetscPrintf(comm, "  %s: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton and %" PetscInt_FMT " KSP iterations; results in %s\n", rec.status, rec.steps,
-                        rec.newton_its, rec.ksp_its, rec.dir));
+  PetscCall(PetscPrintf(comm,
+                        "  %s: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton and %" PetscInt_FMT " KSP iterations; results in %s\n",
+                        rec.status, rec.steps, rec.newton_its, rec.ksp_its, rec.dir));
   if (!converged) PetscCall(PetscFPrintf(comm, PETSC_STDERR, "pdimplicit: run stopped early: %s\n", rec.status));
   PetscCall(PDRecordDestroy(&rec));
   PetscCall(PDModelDestroy(&model));

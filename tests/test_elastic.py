@@ -39,6 +39,43 @@ def bar_tension():
     check(rel(on, exact) < 0.03, "surface-corrected strain within 3 % of F/(EA)")
 
 
+def bar_2d():
+    # Plane stress and plane strain bars. The volume-method correction matches horizon volumes, not the
+    # stiffness moment of the discrete family, so at m = pi the 2D lattice is measured 5.4 % stiff (the 3D
+    # one 2.4 % soft); the test holds 2D to 6 % and the exact plane-strain factor (1 - nu^2) to 1e-6.
+    e = {}
+    for m, f in (("plane_stress", 1.0), ("plane_strain", 1 - 0.25 ** 2)):
+        exact = f * 1e5 / (30e9 * 0.1 * 0.1)
+        e[m] = bar_strain(run("bar_tension_2d", "-pd_model", m))
+        check(rel(e[m], exact) < 0.06, "%s: strain %.5e against %.5e (%+.2f %%)" % (m, e[m], exact, 100 * (e[m] / exact - 1)))
+    check(abs(e["plane_strain"] / e["plane_stress"] - 0.9375) < 1e-6, "plane strain / plane stress = 1 - nu^2 = 0.9375 (%.8f)" % (e["plane_strain"] / e["plane_stress"]))
+
+
+def materials():
+    # A second material of twice the modulus over the right half of the bar halves the strain there.
+    r = run("bar_tension", "-pd_material1_box", "0.25,0,0,0.5,0.1,0.1", "-pd_material1_E", "60e9")
+    x, u, _ = r.fields()
+    def slope(a, b):
+        sel = (x[:, 0] > a) & (x[:, 0] < b)
+        layers = np.unique(np.round(x[sel, 0], 9))
+        return np.polyfit(layers, [u[sel & (np.abs(x[:, 0] - xl) < 1e-9), 0].mean() for xl in layers], 1)[0]
+    soft, stiff = slope(0.08, 0.17), slope(0.33, 0.42)
+    check(abs(soft / stiff - 2) < 0.05, "strain ratio soft/stiff half %.4f (2 for E ratio 2, 2.5 %% band for the interface)" % (soft / stiff))
+
+
+def fields_index():
+    # fields.xmf points at datasets that exist in fields.h5 with the sizes it declares
+    import re
+    import h5py
+    r = run("cantilever", "-pd_steps", 2, "-pd_fields_every", 1)
+    xmf = open(r.dir + "/fields.xmf").read()
+    refs = re.findall(r'Dimensions="([0-9 ]+)"[^>]*>fields.h5:(/[^<]+)<', xmf)
+    with h5py.File(r.dir + "/fields.h5", "r") as f:
+        ok = all(p in f and tuple(f[p].shape) == tuple(int(n) for n in d.split()) for d, p in refs)
+    check(len(refs) == 3 * 2 and ok, "%d XDMF references, all present in fields.h5 with matching shapes" % len(refs))
+    check(xmf.count("<Grid Name=\"step_") == 2, "two time steps indexed")
+
+
 def timoshenko(P=1e4, L=1.0, E=30e9, b=0.1, h=0.1, nu=0.25, k=5.0 / 6.0):
     I = b * h ** 3 / 12
     G = E / (2 * (1 + nu))
@@ -95,5 +132,5 @@ def storage_formats():
 
 
 if __name__ == "__main__":
-    {"bond_counts": bond_counts, "bar_tension": bar_tension, "cantilever": cantilever, "effects": effects, "mpi": mpi,
+    {"bond_counts": bond_counts, "bar_tension": bar_tension, "bar_2d": bar_2d, "materials": materials, "fields_index": fields_index, "cantilever": cantilever, "effects": effects, "mpi": mpi,
      "storage_formats": storage_formats}[sys.argv[1]]()

@@ -4,22 +4,20 @@
 #include "check.h"
 
 /* Printed with 3 significant digits: the value must round to the printed one. */
-static void ThreeDigits(const char *what, double got, double printed)
-{
+static void ThreeDigits(const char *what, double got, double printed) {
   const double e = PetscPowReal(10, PetscFloorReal(PetscLog10Real(printed)) - 2);
   Check(PetscAbsReal(got - printed) <= 0.5 * e * (1 + 1e-9) ? PETSC_TRUE : PETSC_FALSE, what, got, printed);
 }
 
-static void MakeLaw(PDLawKind kind, PetscReal E, PetscReal Gf, PetscReal dx, PetscReal m, PDLaw *law)
-{
+static void MakeLaw(PDLawKind kind, PetscReal E, PetscReal Gf, PetscReal dx, PetscReal m, PDLaw *law) {
   PDScene    sc;
   PDMaterial mat;
 
   PetscMemzero(&sc, sizeof sc);
   PetscMemzero(&mat, sizeof mat);
-  sc.model = PD_MODEL_3D;
-  sc.dim   = 3;
-  sc.dx    = dx;
+  sc.model         = PD_MODEL_3D;
+  sc.dim           = 3;
+  sc.dx            = dx;
   sc.horizon_ratio = m;
   sc.influence     = PD_INFLUENCE_CONSTANT;
   mat.law          = kind;
@@ -34,8 +32,7 @@ static void MakeLaw(PDLawKind kind, PetscReal E, PetscReal Gf, PetscReal dx, Pet
 }
 
 /* Force per unit micromodulus along a stretch path, with the history kept as the kernel keeps it. */
-static PetscReal Force(const PDLaw *law, PetscReal *kappa, PetscReal s)
-{
+static PetscReal Force(const PDLaw *law, PetscReal *kappa, PetscReal s) {
   PetscReal dd, d;
   if (s < 0) return s;
   *kappa = PetscMax(*kappa, s);
@@ -43,11 +40,10 @@ static PetscReal Force(const PDLaw *law, PetscReal *kappa, PetscReal s)
   return (1 - d) * s;
 }
 
-int main(int argc, char **argv)
-{
-  PDLaw          law;
+int main(int argc, char **argv) {
+  PDLaw           law;
   const PDLawKind kinds[4] = {PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR};
-  const char    *names[4] = {"linear", "bilinear", "trilinear", "nonlinear"};
+  const char     *names[4] = {"linear", "bilinear", "trilinear", "nonlinear"};
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   /* Table 5.1: E = 37 GPa, ft = 3.9 MPa, G_F = 143.2 N/m, dx = 5 mm. All nine printed values round
@@ -76,8 +72,8 @@ int main(int argc, char **argv)
   CheckRel("Table 7.2 dx 7.67 mm sc = 1.95e-3 (1 %)", law.nominal.sc, 1.95e-3, 0.01);
 
   for (PetscInt k = 0; k < 4; k++) {
-    char      what[128];
-    PetscReal kappa = 0, W = 0, prev = 0, fprev = 0, dd, d;
+    char           what[128];
+    PetscReal      kappa = 0, W = 0, prev = 0, fprev = 0, dd, d;
     const PetscInt n = 200000;
     MakeLaw(kinds[k], 37e9, 143.2, 5e-3, PETSC_PI, &law);
     /* work of fracture: trapezoidal integral of g/c along monotonic loading to sc, against the
@@ -146,7 +142,7 @@ int main(int argc, char **argv)
   {
     PetscReal       kappa = 0;
     const PetscReal s0 = law.nominal.s0, sc = law.nominal.sc, x = 0.5;
-    const PetscReal h  = (1 - (1 - PetscExpReal(-25 * x)) / (1 - PetscExpReal(-25.0)) + 0.25 * (1 - x)) / 1.25;
+    const PetscReal h = (1 - (1 - PetscExpReal(-25 * x)) / (1 - PetscExpReal(-25.0)) + 0.25 * (1 - x)) / 1.25;
     CheckRel("nonlinear: g at x = 1/2 (Eq. 5.16 by hand)", Force(&law, &kappa, s0 + x * (sc - s0)), s0 * h, 1e-12);
   }
   MakeLaw(PD_LAW_LINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);

@@ -12,8 +12,7 @@ static const char *base = "-pd_domain 0,0,0,0.04,0.025,0.02 -pd_dx 0.005 -pd_E 3
                           "-pd_region0_box 0,0,0,0,0.025,0.02 -pd_region0_kind support -pd_region0_dofs x,y,z "
                           "-pd_region1_box 0.04,0,0,0.04,0.025,0.02 -pd_region1_kind force -pd_region1_force 1,0,0 -pd_mat_type aij";
 
-static PetscErrorCode RunCase(const char *extra, PetscReal *err)
-{
+static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
   PDScene     sc;
   PDLattice   lat;
   PDBonds     bd;
@@ -88,17 +87,16 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err)
   PetscFunctionReturn(0);
 }
 
-int main(int argc, char **argv)
-{
+int main(int argc, char **argv) {
   const char *cases[] = {
-    "-pd_law elastic -pd_kinematics finite",
-    "-pd_law bilinear",
-    "-pd_law trilinear",
-    "-pd_law nonlinear",
-    "-pd_law nonlinear -pd_kinematics finite",
-    "-pd_law trilinear -pd_kinematics finite -pd_stretch modified",
-    "-pd_law bilinear -pd_kinematics finite -pd_bilinear_form bobaru",
-    "-pd_law nonlinear -pd_surface_correction false",
+      "-pd_law elastic -pd_kinematics finite",
+      "-pd_law bilinear",
+      "-pd_law trilinear",
+      "-pd_law nonlinear",
+      "-pd_law nonlinear -pd_kinematics finite",
+      "-pd_law trilinear -pd_kinematics finite -pd_stretch modified",
+      "-pd_law bilinear -pd_kinematics finite -pd_bilinear_form bobaru",
+      "-pd_law nonlinear -pd_surface_correction false",
   };
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {

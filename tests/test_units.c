@@ -3,8 +3,7 @@
 #include "pd_material.h"
 #include "check.h"
 
-int main(int argc, char **argv)
-{
+int main(int argc, char **argv) {
   PDScene         sc;
   const PetscReal E = 37e9, dx = 5e-3, m = 3.14, t = 0.05, d = m * dx;
 
@@ -29,19 +28,21 @@ int main(int argc, char **argv)
 
   CheckRel("conical omega(d/2) = 1/2", PDInfluenceValue(PD_INFLUENCE_CONICAL, d / 2, d), 0.5, 1e-14);
   CheckRel("quartic omega(d/2) = 9/16", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d / 2, d), 9.0 / 16.0, 1e-14);
-  Check(PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d) == 0 ? PETSC_TRUE : PETSC_FALSE, "quartic omega(d) = 0", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d), 0);
+  Check(PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d) == 0 ? PETSC_TRUE : PETSC_FALSE, "quartic omega(d) = 0",
+        PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d), 0);
 
   {
     /* a box flat in x selects the nodes within dx/2 of its plane; a solid box its interior */
-    PDGeometry g    = {PD_SHAPE_BOX, {0.025, 0, 0, 0.025, 0.05, 0}, 0, {0, 0, 0}, 0};
-    PetscReal  in[3] = {0.0275, 0.01, 0.0025}, edge[3] = {0.0225, 0.01, 0.0025}, out[3] = {0.0325, 0.01, 0.0025}, up[3] = {0.0275, 0.01, 0.0075};
+    PDGeometry g     = {PD_SHAPE_BOX, {0.025, 0, 0, 0.025, 0.05, 0}, 0, {0, 0, 0}, 0};
+    PetscReal  in[3] = {0.0275, 0.01, 0.0025}, edge[3] = {0.0225, 0.01, 0.0025}, out[3] = {0.0325, 0.01, 0.0025},
+              up[3] = {0.0275, 0.01, 0.0075};
     Check(PDGeometryContains(&g, in, dx, 3), "flat box holds node dx/2 to the right", 1, 1);
     Check(PDGeometryContains(&g, edge, dx, 3), "flat box holds node dx/2 to the left", 1, 1);
     Check(!PDGeometryContains(&g, out, dx, 3), "flat box drops node 3dx/2 away", 0, 0);
     Check(!PDGeometryContains(&g, up, dx, 3), "flat box drops the second layer up", 0, 0);
   }
   {
-    PDGeometry c     = {PD_SHAPE_CYLINDER, {0, 0, 0, 0, 0, 0}, 1, {0.1, 0, 0.05}, 0.01};
+    PDGeometry c    = {PD_SHAPE_CYLINDER, {0, 0, 0, 0, 0, 0}, 1, {0.1, 0, 0.05}, 0.01};
     PetscReal  a[3] = {0.105, 3.0, 0.055}, b[3] = {0.115, 0.0, 0.05};
     Check(PDGeometryContains(&c, a, dx, 3), "cylinder along y holds a point at r = 7 mm", 1, 1);
     Check(!PDGeometryContains(&c, b, dx, 3), "cylinder along y drops a point at r = 15 mm", 0, 0);

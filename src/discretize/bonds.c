@@ -10,8 +10,7 @@ typedef struct {
   PetscInt *start, *node;
 } CellList;
 
-static PetscInt CellIndex(const CellList *cl, const PetscReal x[3], PetscInt c[3])
-{
+static PetscInt CellIndex(const CellList *cl, const PetscReal x[3], PetscInt c[3]) {
   for (PetscInt a = 0; a < 3; a++) {
     c[a] = (PetscInt)((x[a] - cl->lo[a]) / cl->h);
     c[a] = PetscMin(PetscMax(c[a], 0), cl->nc[a] - 1);
@@ -19,8 +18,7 @@ static PetscInt CellIndex(const CellList *cl, const PetscReal x[3], PetscInt c[3
   return (c[0] * cl->nc[1] + c[1]) * cl->nc[2] + c[2];
 }
 
-static PetscErrorCode CellListCreate(const PDLattice *lat, CellList *cl)
-{
+static PetscErrorCode CellListCreate(const PDLattice *lat, CellList *cl) {
   PetscReal hi[3];
   PetscInt  ncells, c[3], *count;
 
@@ -46,15 +44,14 @@ static PetscErrorCode CellListCreate(const PDLattice *lat, CellList *cl)
     count[i] = 0;
   }
   for (PetscInt l = 0; l < lat->nlocal; l++) {
-    const PetscInt ci                  = CellIndex(cl, &lat->x[3 * l], c);
+    const PetscInt ci                     = CellIndex(cl, &lat->x[3 * l], c);
     cl->node[cl->start[ci] + count[ci]++] = l;
   }
   PetscCall(PetscFree(count));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode CellListDestroy(CellList *cl)
-{
+static PetscErrorCode CellListDestroy(CellList *cl) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(cl->start));
   PetscCall(PetscFree(cl->node));
@@ -63,8 +60,7 @@ static PetscErrorCode CellListDestroy(CellList *cl)
 
 /* A notch is a flat box; a bond is cut when its segment crosses the notch plane, or touches it with one
    end, at a point inside the box. This rule reproduces the bond counts of Hobbs Table A.1. */
-static PetscBool NotchCuts(const PDNotch *n, const PetscReal p[3], const PetscReal q[3], PetscInt dim, PetscReal tol)
-{
+static PetscBool NotchCuts(const PDNotch *n, const PetscReal p[3], const PetscReal q[3], PetscInt dim, PetscReal tol) {
   const PetscInt  a  = n->normal;
   const PetscReal c  = n->box[a];
   PetscReal       dp = p[a] - c, dq = q[a] - c, t;
@@ -81,8 +77,7 @@ static PetscBool NotchCuts(const PDNotch *n, const PetscReal p[3], const PetscRe
   return PETSC_TRUE;
 }
 
-static PetscReal PartialVolumeFactor(const PDScene *sc, PetscReal len, PetscReal delta)
-{
+static PetscReal PartialVolumeFactor(const PDScene *sc, PetscReal len, PetscReal delta) {
   if (!sc->partial_volume || len <= delta - 0.5 * sc->dx) return 1;
   return (delta + 0.5 * sc->dx - len) / sc->dx;
 }
@@ -91,8 +86,7 @@ typedef struct {
   PetscInt *a, *b, n, cap;
 } PairList;
 
-static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b)
-{
+static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
   PetscFunctionBeginUser;
   if (pl->n == pl->cap) {
     PetscInt newcap = PetscMax(1024, 2 * pl->cap);
@@ -107,8 +101,7 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b)
 }
 
 /* Neighbour search: for every owned node, every node within the horizon that no notch separates. */
-static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local)
-{
+static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local) {
   CellList        cl;
   const PetscReal d2 = lat->horizon * lat->horizon * (1 + 1e-10), tol = 1e-9 * sc->dx;
   PetscInt        c[3], lo[3], hi[3];
@@ -128,9 +121,9 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
         for (PetscInt c2 = lo[2]; c2 <= hi[2]; c2++) {
           const PetscInt cell = (c0 * cl.nc[1] + c1) * cl.nc[2] + c2;
           for (PetscInt p = cl.start[cell]; p < cl.start[cell + 1]; p++) {
-            const PetscInt   j  = cl.node[p];
-            const PetscReal *xj = &lat->x[3 * j];
-            PetscReal        r2 = 0;
+            const PetscInt   j   = cl.node[p];
+            const PetscReal *xj  = &lat->x[3 * j];
+            PetscReal        r2  = 0;
             PetscBool        cut = PETSC_FALSE;
             /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
             if (j == i || (j < lat->nowned && lat->gid[j] < lat->gid[i])) continue;
@@ -150,8 +143,7 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
 }
 
 /* Rows of the stiffness: for each owned node the bonds it belongs to, sorted by the neighbour's global id. */
-static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd)
-{
+static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd) {
   PetscInt *fill, *key;
 
   PetscFunctionBeginUser;
@@ -183,8 +175,7 @@ static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd)
 
 /* Volume-method surface correction (Eq. 4.11): V_i = sum_j beta_ij V_j over the family of i, shared with
    neighbouring ranks through a ghosted vector, lambda_ij = 2 V0 / (V_i + V_j). */
-static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta, PetscBool keep)
-{
+static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta, PetscBool keep) {
   Vec             vol, vloc;
   PetscScalar    *v;
   const PetscReal delta = lat->horizon;
@@ -219,8 +210,7 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd)
-{
+PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd) {
   PairList   pl = {NULL, NULL, 0, 0};
   PetscInt   ncut_local, nonce = 0;
   PetscReal *beta;
@@ -243,15 +233,15 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     for (PetscInt a = 0; a < 3; a++) len += (xj[a] - xi[a]) * (xj[a] - xi[a]);
     len = PetscSqrtReal(len);
     /* a bond joining two materials takes the softer one: the interface is no stronger than its weaker side */
-    m              = sc->material[mi].E <= sc->material[mj].E ? mi : mj;
+    m               = sc->material[mi].E <= sc->material[mj].E ? mi : mj;
     bd->material[e] = m;
-    beta[e]        = PartialVolumeFactor(sc, len, lat->horizon);
-    bd->coef[e]    = c0[m] * PDInfluenceValue(sc->influence, len, lat->horizon) * beta[e] * lat->cell_volume * lat->cell_volume;
+    beta[e]         = PartialVolumeFactor(sc, len, lat->horizon);
+    bd->coef[e]     = c0[m] * PDInfluenceValue(sc->influence, len, lat->horizon) * beta[e] * lat->cell_volume * lat->cell_volume;
     if (PDBondCountedHere(lat, bd, e)) nonce++;
   }
   PetscCall(BuildIncidence(lat, bd));
   bd->lambda_min = bd->lambda_max = 1;
-  keep_lambda = keep_lambda && sc->surface_correction;
+  keep_lambda                     = keep_lambda && sc->surface_correction;
   if (keep_lambda) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->lambda));
   if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, keep_lambda));
   PetscCall(PetscFree(beta));
@@ -260,8 +250,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDBondsDestroy(PDBonds *bd)
-{
+PetscErrorCode PDBondsDestroy(PDBonds *bd) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(bd->a));
   PetscCall(PetscFree(bd->b));
@@ -272,13 +261,11 @@ PetscErrorCode PDBondsDestroy(PDBonds *bd)
   PetscFunctionReturn(0);
 }
 
-PetscBool PDBondCountedHere(const PDLattice *lat, const PDBonds *bd, PetscInt e)
-{
+PetscBool PDBondCountedHere(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
   return (bd->b[e] < lat->nowned || lat->gid[bd->a[e]] < lat->gid[bd->b[e]]) ? PETSC_TRUE : PETSC_FALSE;
 }
 
-PetscInt64 PDBondGlobalId(const PDLattice *lat, const PDBonds *bd, PetscInt e)
-{
+PetscInt64 PDBondGlobalId(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
   const PetscInt64 ga = lat->gid[bd->a[e]], gb = lat->gid[bd->b[e]];
   return ga < gb ? ga * lat->nglobal + gb : gb * lat->nglobal + ga;
 }

@@ -1,21 +1,18 @@
 /* The regular lattice: sizes, slab partition over ranks, owned and ghost nodes, materials. */
 #include "pd_lattice.h"
 
-static PetscInt LayerStart(PetscInt nx, PetscMPIInt size, PetscMPIInt rank)
-{
+static PetscInt LayerStart(PetscInt nx, PetscMPIInt size, PetscMPIInt rank) {
   return (PetscInt)(((PetscInt64)nx * rank) / size);
 }
 
-static void NodePosition(const PDLattice *lat, PetscInt gid, PetscReal x[3])
-{
+static void NodePosition(const PDLattice *lat, PetscInt gid, PetscReal x[3]) {
   const PetscInt k = gid % lat->n[2], j = (gid / lat->n[2]) % lat->n[1], i = gid / (lat->n[1] * lat->n[2]);
   x[0] = lat->origin[0] + i * lat->dx;
   x[1] = lat->origin[1] + j * lat->dx;
   x[2] = lat->dim == 3 ? lat->origin[2] + k * lat->dx : 0;
 }
 
-PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
-{
+PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
   PetscInt    layer, R, g0, g1, g2, g3;
 
@@ -23,10 +20,10 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   PetscCall(PetscMemzero(lat, sizeof *lat));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  lat->comm    = comm;
-  lat->dim     = sc->dim;
-  lat->dx      = sc->dx;
-  lat->horizon = sc->horizon_ratio * sc->dx;
+  lat->comm        = comm;
+  lat->dim         = sc->dim;
+  lat->dx          = sc->dx;
+  lat->horizon     = sc->horizon_ratio * sc->dx;
   lat->cell_volume = sc->dim == 3 ? sc->dx * sc->dx * sc->dx : sc->dx * sc->dx * sc->thickness;
   for (PetscInt a = 0; a < 3; a++) {
     const PetscReal len = sc->domain[3 + a] - sc->domain[a];
@@ -36,7 +33,8 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   }
   PetscCheck((PetscInt64)lat->n[0] * lat->n[1] * lat->n[2] < PETSC_MAX_INT / 3, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_dx: %g gives too many nodes for 32-bit indices", (double)sc->dx);
-  PetscCheck(lat->n[0] >= size, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: %" PetscInt_FMT " layers along x cannot be shared by %d ranks", lat->n[0], size);
+  PetscCheck(lat->n[0] >= size, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: %" PetscInt_FMT " layers along x cannot be shared by %d ranks",
+             lat->n[0], size);
   lat->nglobal     = lat->n[0] * lat->n[1] * lat->n[2];
   layer            = lat->n[1] * lat->n[2];
   lat->layer_start = LayerStart(lat->n[0], size, rank);
@@ -44,13 +42,13 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   lat->nowned      = (lat->layer_end - lat->layer_start) * layer;
   lat->gid_start   = lat->layer_start * layer;
   /* ghosts: every node within one horizon, i.e. the R nearest layers on either side */
-  R            = (PetscInt)PetscFloorReal(sc->horizon_ratio * (1 + 1e-10));
-  g0           = PetscMax(0, lat->layer_start - R) * layer;
-  g1           = lat->layer_start * layer;
-  g2           = lat->layer_end * layer;
-  g3           = PetscMin(lat->n[0], lat->layer_end + R) * layer;
-  lat->nghost  = (g1 - g0) + (g3 - g2);
-  lat->nlocal  = lat->nowned + lat->nghost;
+  R           = (PetscInt)PetscFloorReal(sc->horizon_ratio * (1 + 1e-10));
+  g0          = PetscMax(0, lat->layer_start - R) * layer;
+  g1          = lat->layer_start * layer;
+  g2          = lat->layer_end * layer;
+  g3          = PetscMin(lat->n[0], lat->layer_end + R) * layer;
+  lat->nghost = (g1 - g0) + (g3 - g2);
+  lat->nlocal = lat->nowned + lat->nghost;
   PetscCall(PetscMalloc3(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material));
   {
     PetscInt l = 0;
@@ -70,15 +68,13 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDLatticeDestroy(PDLattice *lat)
-{
+PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree3(lat->gid, lat->x, lat->material));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *lat, PetscInt bs, Vec *v)
-{
+PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *lat, PetscInt bs, Vec *v) {
   PetscFunctionBeginUser;
   PetscCall(VecCreateGhostBlock(lat->comm, bs, bs * lat->nowned, PETSC_DECIDE, lat->nghost, lat->gid + lat->nowned, v));
   PetscCall(VecSetBlockSize(*v, bs));
@@ -86,8 +82,7 @@ PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *lat, PetscInt bs, Vec *v
 }
 
 /* Nearest lattice node to a point; ties go to the lower index so every rank agrees. */
-PetscInt PDLatticeNearestNode(const PDLattice *lat, const PetscReal p[3])
-{
+PetscInt PDLatticeNearestNode(const PDLattice *lat, const PetscReal p[3]) {
   PetscInt idx[3] = {0, 0, 0};
   for (PetscInt a = 0; a < lat->dim; a++) {
     const PetscReal f = (p[a] - lat->origin[a]) / lat->dx;

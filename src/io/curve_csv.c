@@ -1,8 +1,7 @@
 /* curve.csv: one row per converged step, columns fixed by the stable interface. */
 #include "pd_io.h"
 
-PetscErrorCode PDCurveWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *rec)
-{
+PetscErrorCode PDCurveWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *rec) {
   FILE *fp;
   char  path[PETSC_MAX_PATH_LEN];
 
@@ -13,9 +12,9 @@ PetscErrorCode PDCurveWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *re
   PetscCall(PetscFPrintf(comm, fp, "step,lambda,load_N,disp_m,cmod_m,broken_bonds,newton_its,ksp_its,wall_s\n"));
   for (PetscInt k = 0; k < rec->nrows; k++) {
     const PDCurveRow *r = &rec->rows[k];
-    PetscCall(PetscFPrintf(comm, fp, "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.4f\n", r->step,
-                           (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its, r->ksp_its,
-                           (double)r->wall));
+    PetscCall(PetscFPrintf(
+        comm, fp, "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT ",%.4f\n", r->step,
+        (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its, r->ksp_its, (double)r->wall));
   }
   PetscCall(PetscFClose(comm, fp));
   PetscCall(PDFileCommit(comm, rec->dir, "curve.csv"));

@@ -3,8 +3,7 @@
 #include "pd_io.h"
 #include <petscviewerhdf5.h>
 
-static PetscErrorCode CreateNodeVec(const PDModel *m, PetscInt bs, Vec *v)
-{
+static PetscErrorCode CreateNodeVec(const PDModel *m, PetscInt bs, Vec *v) {
   PetscFunctionBeginUser;
   PetscCall(VecCreate(m->lat->comm, v));
   PetscCall(VecSetSizes(*v, bs * m->lat->nowned, PETSC_DECIDE));
@@ -13,8 +12,7 @@ static PetscErrorCode CreateNodeVec(const PDModel *m, PetscInt bs, Vec *v)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u)
-{
+PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
   const PDLattice   *lat = m->lat;
   Vec                v3, d;
   PetscScalar       *a;
@@ -60,8 +58,7 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec)
-{
+PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec) {
   MPI_Comm comm = m->lat->comm;
   FILE    *fp;
   char     path[PETSC_MAX_PATH_LEN];
@@ -77,11 +74,25 @@ PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec)
   PetscCall(PetscFPrintf(comm, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", m->scene->name));
   for (PetscInt k = 0; k < rec->nfield_steps; k++) {
     const PetscInt s = rec->field_steps[k];
-    PetscCall(PetscFPrintf(comm, fp, "   <Grid Name=\"step_%06" PetscInt_FMT "\" GridType=\"Uniform\">\n    <Time Value=\"%" PetscInt_FMT "\"/>\n", s, s));
-    PetscCall(PetscFPrintf(comm, fp, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%" PetscInt_FMT "\" NodesPerElement=\"1\"/>\n", N));
-    PetscCall(PetscFPrintf(comm, fp, "    <Geometry GeometryType=\"XYZ\"><DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/coordinates</DataItem></Geometry>\n", N));
-    PetscCall(PetscFPrintf(comm, fp, "    <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%" PetscInt_FMT " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/displacement_%06" PetscInt_FMT "</DataItem></Attribute>\n", N, s));
-    PetscCall(PetscFPrintf(comm, fp, "    <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"%" PetscInt_FMT "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/damage_%06" PetscInt_FMT "</DataItem></Attribute>\n", N, s));
+    PetscCall(PetscFPrintf(
+        comm, fp, "   <Grid Name=\"step_%06" PetscInt_FMT "\" GridType=\"Uniform\">\n    <Time Value=\"%" PetscInt_FMT "\"/>\n", s, s));
+    PetscCall(PetscFPrintf(
+        comm, fp, "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%" PetscInt_FMT "\" NodesPerElement=\"1\"/>\n", N));
+    PetscCall(PetscFPrintf(comm, fp,
+                           "    <Geometry GeometryType=\"XYZ\"><DataItem Dimensions=\"%" PetscInt_FMT
+                           " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/coordinates</DataItem></Geometry>\n",
+                           N));
+    PetscCall(
+        PetscFPrintf(comm, fp,
+                     "    <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\"><DataItem Dimensions=\"%" PetscInt_FMT
+                     " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/displacement_%06" PetscInt_FMT
+                     "</DataItem></Attribute>\n",
+                     N, s));
+    PetscCall(PetscFPrintf(comm, fp,
+                           "    <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"%" PetscInt_FMT
+                           "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/damage_%06" PetscInt_FMT
+                           "</DataItem></Attribute>\n",
+                           N, s));
     PetscCall(PetscFPrintf(comm, fp, "   </Grid>\n"));
   }
   PetscCall(PetscFPrintf(comm, fp, "  </Grid>\n </Domain>\n</Xdmf>\n"));

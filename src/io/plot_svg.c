@@ -5,8 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define W  640.0
-#define H  440.0
+#define W 640.0
+#define H 440.0
 #define ML 70.0
 #define MR 20.0
 #define MT 30.0
@@ -17,8 +17,7 @@ typedef struct {
   PetscReal *x, *mean, *lo, *hi;
 } ExpCurve;
 
-static PetscErrorCode ReadExperiment(const char *file, ExpCurve *ex)
-{
+static PetscErrorCode ReadExperiment(const char *file, ExpCurve *ex) {
   FILE    *fp;
   char     line[512];
   PetscInt cap = 0;
@@ -47,18 +46,16 @@ static PetscErrorCode ReadExperiment(const char *file, ExpCurve *ex)
   PetscFunctionReturn(0);
 }
 
-static PetscReal NiceStep(PetscReal range)
-{
+static PetscReal NiceStep(PetscReal range) {
   const PetscReal raw = range / 5, p = PetscPowReal(10, PetscFloorReal(PetscLog10Real(raw))), f = raw / p;
   return (f < 1.5 ? 1 : f < 3.5 ? 2 : f < 7.5 ? 5 : 10) * p;
 }
 
-PetscErrorCode PDCurvePlotWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *rec)
-{
+PetscErrorCode PDCurvePlotWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *rec) {
   PetscMPIInt rank;
   FILE       *fp;
   char        path[PETSC_MAX_PATH_LEN];
-  ExpCurve    ex = {0, NULL, NULL, NULL, NULL};
+  ExpCurve    ex   = {0, NULL, NULL, NULL, NULL};
   PetscReal   xmax = 0, ymax = 0, ymin = 0, sx, sy, step;
   PetscBool   use_cmod = sc->has_cmod;
 
@@ -83,21 +80,29 @@ PetscErrorCode PDCurvePlotWrite(MPI_Comm comm, const PDScene *sc, const PDRecord
     PetscCall(PetscSNPrintf(path, sizeof path, "%s/curve.svg.tmp", rec->dir));
     fp = fopen(path, "w");
     PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
-    fprintf(fp, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" font-family=\"sans-serif\" font-size=\"12\">\n", W, H);
-    fprintf(fp, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n<text x=\"%g\" y=\"18\" text-anchor=\"middle\">%s</text>\n", W / 2, sc->name);
-#define PX(v) (ML + (v) * sx)
-#define PY(v) (H - MB - ((v) - ymin) * sy)
+    fprintf(fp, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" font-family=\"sans-serif\" font-size=\"12\">\n", W,
+            H);
+    fprintf(fp, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n<text x=\"%g\" y=\"18\" text-anchor=\"middle\">%s</text>\n",
+            W / 2, sc->name);
+#define PX(v) (ML + (v)*sx)
+#define PY(v) (H - MB - ((v)-ymin) * sy)
     step = NiceStep(xmax);
     for (PetscReal t = 0; t <= xmax * (1 + 1e-9); t += step)
-      fprintf(fp, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", PX(t), PY(ymin),
-              PX(t), PY(ymax), PX(t), PY(ymin) + 16, (double)t);
+      fprintf(fp,
+              "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.1f\" "
+              "text-anchor=\"middle\">%g</text>\n",
+              PX(t), PY(ymin), PX(t), PY(ymax), PX(t), PY(ymin) + 16, (double)t);
     step = NiceStep(ymax - ymin);
     for (PetscReal t = step * PetscCeilReal(ymin / step); t <= ymax * (1 + 1e-9); t += step)
-      fprintf(fp, "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", PX(0), PY(t),
-              PX(xmax), PY(t), PX(0) - 6, PY(t) + 4, (double)t);
+      fprintf(fp,
+              "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/><text x=\"%.1f\" y=\"%.1f\" "
+              "text-anchor=\"end\">%g</text>\n",
+              PX(0), PY(t), PX(xmax), PY(t), PX(0) - 6, PY(t) + 4, (double)t);
     fprintf(fp, "<rect x=\"%g\" y=\"%g\" width=\"%g\" height=\"%g\" fill=\"none\" stroke=\"black\"/>\n", ML, MT, W - ML - MR, H - MT - MB);
-    fprintf(fp, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%s (mm)</text>\n", (ML + W - MR) / 2, H - 15, use_cmod ? "CMOD" : "displacement");
-    fprintf(fp, "<text x=\"18\" y=\"%g\" text-anchor=\"middle\" transform=\"rotate(-90 18 %g)\">load (kN)</text>\n", (MT + H - MB) / 2, (MT + H - MB) / 2);
+    fprintf(fp, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%s (mm)</text>\n", (ML + W - MR) / 2, H - 15,
+            use_cmod ? "CMOD" : "displacement");
+    fprintf(fp, "<text x=\"18\" y=\"%g\" text-anchor=\"middle\" transform=\"rotate(-90 18 %g)\">load (kN)</text>\n", (MT + H - MB) / 2,
+            (MT + H - MB) / 2);
     if (ex.n) {
       fprintf(fp, "<polygon fill=\"#9ecae1\" fill-opacity=\"0.5\" stroke=\"none\" points=\"");
       for (PetscInt k = 0; k < ex.n; k++) fprintf(fp, "%.1f,%.1f ", PX(ex.x[k]), PY(ex.hi[k]));

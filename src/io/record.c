@@ -6,8 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-PetscErrorCode PDRecordCreate(MPI_Comm comm, const PDScene *sc, PDRecord *rec)
-{
+PetscErrorCode PDRecordCreate(MPI_Comm comm, const PDScene *sc, PDRecord *rec) {
   PetscLogDouble t;
 
   PetscFunctionBeginUser;
@@ -19,8 +18,7 @@ PetscErrorCode PDRecordCreate(MPI_Comm comm, const PDScene *sc, PDRecord *rec)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDRecordAddRow(PDRecord *rec, const PDCurveRow *row)
-{
+PetscErrorCode PDRecordAddRow(PDRecord *rec, const PDCurveRow *row) {
   PetscFunctionBeginUser;
   if (rec->nrows == rec->capacity) {
     rec->capacity = PetscMax(64, 2 * rec->capacity);
@@ -30,8 +28,7 @@ PetscErrorCode PDRecordAddRow(PDRecord *rec, const PDCurveRow *row)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDRecordDestroy(PDRecord *rec)
-{
+PetscErrorCode PDRecordDestroy(PDRecord *rec) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree(rec->rows));
   PetscCall(PetscFree(rec->field_steps));
@@ -40,8 +37,7 @@ PetscErrorCode PDRecordDestroy(PDRecord *rec)
 }
 
 /* mkdir -p on rank 0; every rank learns the outcome. */
-PetscErrorCode PDOutputPrepare(MPI_Comm comm, const PDScene *sc, PDRecord *rec)
-{
+PetscErrorCode PDOutputPrepare(MPI_Comm comm, const PDScene *sc, PDRecord *rec) {
   PetscMPIInt rank;
   int         err = 0;
 
@@ -64,8 +60,7 @@ PetscErrorCode PDOutputPrepare(MPI_Comm comm, const PDScene *sc, PDRecord *rec)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDFileCommit(MPI_Comm comm, const char *dir, const char *name)
-{
+PetscErrorCode PDFileCommit(MPI_Comm comm, const char *dir, const char *name) {
   PetscMPIInt rank;
   int         err = 0;
 
@@ -83,12 +78,13 @@ PetscErrorCode PDFileCommit(MPI_Comm comm, const char *dir, const char *name)
 }
 
 /* One line on stderr, rewritten in place on a terminal. */
-PetscErrorCode PDProgress(MPI_Comm comm, const PDScene *sc, const PDCurveRow *row, PetscBool last)
-{
+PetscErrorCode PDProgress(MPI_Comm comm, const PDScene *sc, const PDCurveRow *row, PetscBool last) {
   PetscFunctionBeginUser;
   if (!sc->progress) PetscFunctionReturn(0);
-  PetscCall(PetscFPrintf(comm, PETSC_STDERR, "\r[%s] step %" PetscInt_FMT "  lambda %.4f/%.4g  load %.5g N  disp %.4g m  cmod %.4g m  broken %" PetscInt_FMT "  newton %" PetscInt_FMT "  %.1f s   %s",
-                         sc->name, row->step, (double)row->lambda, (double)sc->lambda_max, (double)row->load, (double)row->disp, (double)row->cmod,
-                         row->broken_bonds, row->newton_its, (double)row->wall, last ? "\n" : ""));
+  PetscCall(PetscFPrintf(comm, PETSC_STDERR,
+                         "\r[%s] step %" PetscInt_FMT "  lambda %.4f/%.4g  load %.5g N  disp %.4g m  cmod %.4g m  broken %" PetscInt_FMT
+                         "  newton %" PetscInt_FMT "  %.1f s   %s",
+                         sc->name, row->step, (double)row->lambda, (double)sc->lambda_max, (double)row->load, (double)row->disp,
+                         (double)row->cmod, row->broken_bonds, row->newton_its, (double)row->wall, last ? "\n" : ""));
   PetscFunctionReturn(0);
 }

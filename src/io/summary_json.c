@@ -1,9 +1,9 @@
 /* summary.json: what ran, what it cost and how it ended. */
 #include "pd_io.h"
+#include <stdio.h>
 #include <sys/resource.h>
 
-static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *total)
-{
+static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *total) {
   struct rusage ru;
   PetscReal     mine;
 
@@ -15,23 +15,41 @@ static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *total)
 }
 
 /* Physical effects the scene calls for; discretisation corrections are listed apart. */
-static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDScene *sc)
-{
+static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
+  const PDScene *sc   = m->scene;
+  PetscBool      soft = PETSC_FALSE, brk = PETSC_FALSE;
+
   PetscFunctionBeginUser;
-  PetscCall(PetscFPrintf(comm, fp, "  \"effects\": [\"elasticity\"%s],\n", sc->kinematics == PD_KINEMATICS_FINITE ? ", \"geometric_nonlinearity\"" : ""));
+  for (PetscInt k = 0; k < sc->nmaterials; k++) {
+    if (sc->material[k].law != PD_LAW_ELASTIC) brk = PETSC_TRUE;
+    if (sc->material[k].law != PD_LAW_ELASTIC && sc->material[k].law != PD_LAW_LINEAR) soft = PETSC_TRUE;
+  }
+  PetscCall(PetscFPrintf(comm, fp, "  \"effects\": [\"elasticity\"%s%s%s],\n", soft ? ", \"softening_damage\"" : "",
+                         brk ? ", \"bond_breaking\"" : "", sc->kinematics == PD_KINEMATICS_FINITE ? ", \"geometric_nonlinearity\"" : ""));
+  {
+    const PDLaw *law = &m->law[0];
+    PetscCall(PetscFPrintf(comm, fp,
+                           "  \"law\": {\"name\": \"%s\", \"s0\": %.6e, \"s1\": %.6e, \"sc\": %.6e, \"ft_Pa\": %.6e, \"Gf_N_per_m\": %.6e, "
+                           "\"tangent\": \"%s\", \"limiter_max_bonds\": %" PetscInt_FMT "},\n",
+                           PDLawNames[law->kind], (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s0),
+                           (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s1),
+                           (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.sc), (double)law->ft, (double)law->Gf,
+                           PDTangentNames[sc->tangent], sc->limiter_max));
+  }
   PetscCall(PetscFPrintf(comm, fp, "  \"corrections\": [%s%s%s],\n", sc->partial_volume ? "\"partial_volume\"" : "",
                          sc->partial_volume && sc->surface_correction ? ", " : "", sc->surface_correction ? "\"surface_correction\"" : ""));
   PetscFunctionReturn(0);
 }
 
-static void JsonReal(char *buf, size_t len, PetscReal v)
-{
-  if (PetscIsInfOrNanReal(v)) PetscSNPrintf(buf, len, "null");
-  else PetscSNPrintf(buf, len, "%.10g", (double)v);
+/* C's snprintf, not PETSc's: PETSc's printf appends '.' to whole numbers, which is not JSON. */
+static void JsonReal(char *buf, size_t len, PetscReal v) {
+  if (PetscIsInfOrNanReal(v))
+    snprintf(buf, len, "null");
+  else
+    snprintf(buf, len, "%.10e", (double)v);
 }
 
-PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *rec)
-{
+PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *rec) {
   const PDScene *sc = m->scene;
   FILE          *fp;
   char           path[PETSC_MAX_PATH_LEN], peak[32], dpeak[32], fin[32];
@@ -46,8 +64,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
       pk  = rec->rows[k].load;
       dpk = rec->rows[k].disp;
     }
-  if (!rec->nrows) pk = PD_NAN;
-  else last = rec->rows[rec->nrows - 1].load;
+  if (!rec->nrows)
+    pk = PD_NAN;
+  else
+    last = rec->rows[rec->nrows - 1].load;
   JsonReal(peak, sizeof peak, pk);
   JsonReal(dpeak, sizeof dpeak, dpk);
   JsonReal(fin, sizeof fin, last);
@@ -57,24 +77,41 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   PetscCall(PetscSNPrintf(path, sizeof path, "%s/summary.json.tmp", rec->dir));
   PetscCall(PetscFOpen(comm, path, "w", &fp));
   PetscCall(PetscFPrintf(comm, fp, "{\n  \"scene\": \"%s\",\n  \"mode\": \"implicit\",\n  \"ranks\": %d,\n", sc->name, size));
-  PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n", m->lat->nglobal,
-                         m->bonds->nbonds_global, m->lat->nglobal * m->bs));
-  PetscCall(WriteEffects(comm, fp, sc));
-  PetscCall(PetscFPrintf(comm, fp, "  \"dx_m\": %.10g,\n  \"horizon_ratio\": %.10g,\n  \"influence\": \"%s\",\n  \"kinematics\": \"%s\",\n", (double)sc->dx,
-                         (double)sc->horizon_ratio, PDInfluences[sc->influence], PDKinematicsNames[sc->kinematics]));
-  PetscCall(PetscFPrintf(comm, fp, "  \"bonds_cut_by_notches\": %" PetscInt_FMT ",\n  \"surface_correction_range\": [%.6g, %.6g],\n", m->bonds->ncut,
-                         (double)m->bonds->lambda_min, (double)m->bonds->lambda_max));
-  PetscCall(PetscFPrintf(comm, fp, "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n", m->nconstrained, m->nzero_dofs, m->nisolated));
+  PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
+                         m->lat->nglobal, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
+  PetscCall(WriteEffects(comm, fp, m));
+  PetscCall(PetscFPrintf(comm, fp, "  \"dx_m\": %.10e,\n  \"horizon_ratio\": %.10e,\n  \"influence\": \"%s\",\n  \"kinematics\": \"%s\",\n",
+                         (double)sc->dx, (double)sc->horizon_ratio, PDInfluences[sc->influence], PDKinematicsNames[sc->kinematics]));
+  PetscCall(PetscFPrintf(comm, fp, "  \"bonds_cut_by_notches\": %" PetscInt_FMT ",\n  \"surface_correction_range\": [%.6e, %.6e],\n",
+                         m->bonds->ncut, (double)m->bonds->lambda_min, (double)m->bonds->lambda_max));
+  PetscCall(PetscFPrintf(comm, fp,
+                         "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT
+                         ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n",
+                         m->nconstrained, m->nzero_dofs, m->nisolated));
   PetscCall(PetscFPrintf(comm, fp, "  \"solver\": \"%s\",\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT ",\n", rec->solver,
                          m->linear ? "true" : "false", m->jacobian_assemblies));
-  PetscCall(PetscFPrintf(comm, fp, "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n", rec->steps,
-                         rec->newton_its, rec->ksp_its));
+  PetscCall(PetscFPrintf(comm, fp,
+                         "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n",
+                         rec->steps, rec->newton_its, rec->ksp_its));
+  PetscCall(PetscFPrintf(comm, fp,
+                         "  \"broken_bonds\": %" PetscInt_FMT ",\n  \"max_bonds_per_iteration\": %" PetscInt_FMT
+                         ",\n  \"max_regularised_dofs\": %" PetscInt_FMT ",\n",
+                         m->broken, rec->max_events_per_its, m->max_regularised));
   PetscCall(PetscFPrintf(comm, fp, "  \"peak_load_N\": %s,\n  \"disp_at_peak_m\": %s,\n  \"final_load_N\": %s,\n", peak, dpeak, fin));
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
-  PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n", (double)rec->t_setup,
-                         (double)m->t_assembly, (double)rec->t_solve, (double)rec->t_output));
-  PetscCall(PetscFPrintf(comm, fp, "  \"memory\": {\"history_bytes\": %" PetscInt64_FMT ", \"matrix_nonzeros\": %.0f, \"peak_rss_bytes\": %.0f},\n", m->history_bytes,
-                         (double)rec->matrix_nonzeros, (double)mem));
+  PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n",
+                         (double)rec->t_setup, (double)m->t_assembly, (double)rec->t_solve, (double)rec->t_output));
+  {
+    /* estimate for -pd_dry_run: bond arrays, history, and the stiffness (block rows of 8-byte values
+       and 4-byte column indices; SBAIJ stores the upper half) */
+    const PetscReal nb = (PetscReal)m->bonds->nbonds_global, bs2 = (PetscReal)(m->bs * m->bs);
+    const PetscReal est = nb * (2 * sizeof(PetscInt) + 2 * sizeof(PetscReal) + 2 * sizeof(PetscInt)) + (PetscReal)m->history_bytes +
+                          (nb + m->lat->nglobal) * (bs2 * 8 + 4);
+    PetscCall(PetscFPrintf(comm, fp,
+                           "  \"memory\": {\"history_bytes\": %" PetscInt64_FMT
+                           ", \"matrix_nonzeros\": %.0f, \"estimated_bytes\": %.0f, \"peak_rss_bytes\": %.0f},\n",
+                           m->history_bytes, (double)rec->matrix_nonzeros, (double)est, (double)mem));
+  }
   PetscCall(PetscFPrintf(comm, fp, "  \"converged\": %s,\n  \"status\": \"%s\"\n}\n", rec->converged ? "true" : "false", rec->status));
   PetscCall(PetscFClose(comm, fp));
   PetscCall(PDFileCommit(comm, rec->dir, "summary.json"));

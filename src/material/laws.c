@@ -9,8 +9,7 @@
 #include "pd_material.h"
 
 /* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5). */
-static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t)
-{
+static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t) {
   const PetscReal G = law->Gf;
   t->s0 = t->s1 = t->sc = PETSC_MAX_REAL;
   switch (law->kind) {
@@ -39,17 +38,16 @@ static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t)
        evaluated as (e^-k - 1)/(Q e^-k) so that k = 25 does not overflow anything. */
     const PetscReal k = law->k, a = law->alpha, emk = PetscExpReal(-k);
     const PetscReal Qs = (2 * k + a * k + 2) * emk - 2 - a * k; /* Q e^-k */
-    t->s0 = law->ft / law->E;
-    t->sc = t->s0 + 10 * k * (emk - 1) * (1 + a) * G / (pcd5 * t->s0 * Qs);
-    t->s1 = t->sc;
+    t->s0              = law->ft / law->E;
+    t->sc              = t->s0 + 10 * k * (emk - 1) * (1 + a) * G / (pcd5 * t->s0 * Qs);
+    t->s1              = t->sc;
   } break;
   default:
     break;
   }
 }
 
-PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law)
-{
+PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) {
   const PetscReal delta = sc->horizon_ratio * sc->dx;
   PetscReal       geo;
   PDLawBond       t;
@@ -67,21 +65,21 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law)
   law->k        = mat->k;
   law->alpha    = mat->alpha;
   law->per_bond = sc->surface_correction && sc->sc_correction;
-  if (sc->dim == 3) geo = PETSC_PI * law->c * PDInfluenceMoment(sc->influence, 4) * PetscPowReal(delta, 5);
-  else geo = 2 * sc->thickness * law->c * PDInfluenceMoment(sc->influence, 3) * PetscPowReal(delta, 4);
+  if (sc->dim == 3)
+    geo = PETSC_PI * law->c * PDInfluenceMoment(sc->influence, 4) * PetscPowReal(delta, 5);
+  else
+    geo = 2 * sc->thickness * law->c * PDInfluenceMoment(sc->influence, 3) * PetscPowReal(delta, 4);
   law->geo = geo;
   Thresholds(law, 5 * geo, &t);
   law->nominal = t;
   PetscFunctionReturn(0);
 }
 
-void PDLawBondThresholds(const PDLaw *law, PetscReal lambda, PDLawBond *t)
-{
+void PDLawBondThresholds(const PDLaw *law, PetscReal lambda, PDLawBond *t) {
   Thresholds(law, 5 * law->geo * (law->per_bond ? lambda : 1), t);
 }
 
-PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, PetscReal *dd)
-{
+PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, PetscReal *dd) {
   const PetscReal s0 = t->s0, s1 = t->s1, sc = t->sc;
   *dd = 0;
   if (law->kind == PD_LAW_ELASTIC) return 0;
@@ -111,8 +109,7 @@ PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, Pet
   }
 }
 
-PetscReal PDLawWorkOfFracture(const PDLaw *law)
-{
+PetscReal PDLawWorkOfFracture(const PDLaw *law) {
   const PetscReal s0 = law->nominal.s0, s1 = law->nominal.s1, sc = law->nominal.sc;
   switch (law->kind) {
   case PD_LAW_LINEAR:
@@ -131,8 +128,7 @@ PetscReal PDLawWorkOfFracture(const PDLaw *law)
   }
 }
 
-PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PDBondLevel level)
-{
+PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PDBondLevel level) {
   if (law->kind == PD_LAW_ELASTIC || level == PD_BOND_BROKEN) return PETSC_MAX_REAL;
   if (level == PD_BOND_ELASTIC && law->kind != PD_LAW_LINEAR) return t->s0;
   return t->sc;

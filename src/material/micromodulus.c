@@ -4,8 +4,7 @@
    these reproduce the constants printed in Hobbs Table 3.1 and Eq. 3.27/3.28. */
 #include "pd_material.h"
 
-PetscReal PDInfluenceValue(PDInfluence w, PetscReal len, PetscReal horizon)
-{
+PetscReal PDInfluenceValue(PDInfluence w, PetscReal len, PetscReal horizon) {
   const PetscReal r = len / horizon;
   switch (w) {
   case PD_INFLUENCE_CONICAL:
@@ -18,8 +17,7 @@ PetscReal PDInfluenceValue(PDInfluence w, PetscReal len, PetscReal horizon)
 }
 
 /* Moments int_0^1 omega(r) r^k dr of the influence functions. */
-PetscReal PDInfluenceMoment(PDInfluence w, PetscInt k)
-{
+PetscReal PDInfluenceMoment(PDInfluence w, PetscInt k) {
   switch (w) {
   case PD_INFLUENCE_CONICAL:
     return 1.0 / (k + 1) - 1.0 / (k + 2);
@@ -30,8 +28,7 @@ PetscReal PDInfluenceMoment(PDInfluence w, PetscInt k)
   }
 }
 
-PetscReal PDMicromodulus(const PDScene *sc, PetscReal E)
-{
+PetscReal PDMicromodulus(const PDScene *sc, PetscReal E) {
   const PetscReal delta = sc->horizon_ratio * sc->dx;
   switch (sc->model) {
   case PD_MODEL_PLANE_STRESS:

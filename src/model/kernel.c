@@ -9,8 +9,7 @@
    (the linearised micromodulus of Eq. 4.13). Finite: exact s = (|y| - |xi|)/|xi|, q = 1/|xi|, or the
    modified s = (|y|^2 - |xi|^2)/(2|xi|^2), q = |y|/|xi|^2 (Miranda et al. Eq. 17). */
 static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *xa, const PetscReal *xb, const PetscScalar *ua,
-                             const PetscScalar *ub, PetscReal e[3], PetscReal *len0, PetscReal *len, PetscReal *s, PetscReal *q)
-{
+                             const PetscScalar *ub, PetscReal e[3], PetscReal *len0, PetscReal *len, PetscReal *s, PetscReal *q) {
   PetscReal xi[3] = {0, 0, 0}, eta[3] = {0, 0, 0}, L2 = 0;
   for (PetscInt a = 0; a < dim; a++) {
     xi[a]  = xb[a] - xa[a];
@@ -42,16 +41,14 @@ static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *x
   }
 }
 
-static inline const PDLawBond *Thresholds(const PDModel *m, PetscInt e, const PDLaw *law)
-{
+static inline const PDLawBond *Thresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
   return m->thr ? &m->thr[e] : &law->nominal;
 }
 
 /* Scalar bond force g(s) and its slope. History kappa_n and the level the limiter allows give the
    effective largest stretch; a bond held below a threshold stays on its current branch. Compression is
    linear elastic whatever the damage (cracks do not interpenetrate). */
-static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp)
-{
+static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
   const PetscReal c = m->bonds->coef[e];
   const PDLaw    *law;
   PetscReal       kap, cap, d, dd;
@@ -73,16 +70,17 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
     kap                = PetscMax(m->kappa[e], s);
     /* held at the threshold the limiter has not yet let it pass: the limit from below */
     if (kap >= cap) kap = cap * (1 - 1e-12);
-    d = PDLawDamage(law, t, kap, &dd);
-    *g                 = c * (1 - d) * s;
+    d  = PDLawDamage(law, t, kap, &dd);
+    *g = c * (1 - d) * s;
     /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
-    if (m->scene->tangent == PD_TANGENT_CONSISTENT && s >= m->kappa[e] && s < cap) *gp = c * ((1 - d) - s * dd);
-    else *gp = c * (1 - d);
+    if (m->scene->tangent == PD_TANGENT_CONSISTENT && s >= m->kappa[e] && s < cap)
+      *gp = c * ((1 - d) - s * dd);
+    else
+      *gp = c * (1 - d);
   }
 }
 
-PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, PetscScalar *f)
-{
+PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, PetscScalar *f) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
@@ -104,11 +102,10 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
 }
 
 /* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4). */
-PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal *ka, PetscReal *kb)
-{
-  const PDBonds   *bd  = m->bonds;
-  const PDLattice *lat = m->lat;
-  const PetscInt   bs  = m->bs;
+PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal *ka, PetscReal *kb) {
+  const PDBonds   *bd        = m->bonds;
+  const PDLattice *lat       = m->lat;
+  const PetscInt   bs        = m->bs;
   const PetscBool  geometric = m->scene->kinematics == PD_KINEMATICS_FINITE;
 
   PetscFunctionBeginUser;
@@ -127,8 +124,8 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
    symmetrically: their rows and columns are zero but for bc_scale on the diagonal. A free direction
    left without stiffness (every bond of the node broken) gets a small diagonal so that the matrix stays
    regular; the residual is not changed, so the solution is not either. */
-PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J, PetscInt *nregularised)
-{
+PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
+                                   PetscInt *nregularised) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs = m->bs, bs2 = bs * bs;
@@ -160,7 +157,7 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
       cols[c] = lat->gid[j];
       for (PetscInt r = 0; r < bs; r++)
         for (PetscInt qq = 0; qq < bs; qq++) {
-          const PetscBool zero = m->fixed_local[bs * i + r] || m->fixed_local[bs * j + qq];
+          const PetscBool zero       = m->fixed_local[bs * i + r] || m->fixed_local[bs * j + qq];
           vals[r * ld + c * bs + qq] = zero ? 0 : -K[r * bs + qq];
         }
       c++;
@@ -187,22 +184,21 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
 }
 
 /* Stretch of every bond at u, for the limiter and the history update. */
-PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s)
-{
+PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     PetscReal dir[3], L0, L, q;
-    BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L, &s[e], &q);
+    BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L,
+              &s[e], &q);
   }
   PetscFunctionReturn(0);
 }
 
 /* Bond damage with the committed history, for output. */
-PetscReal PDModelBondDamage(const PDModel *m, PetscInt e)
-{
+PetscReal PDModelBondDamage(const PDModel *m, PetscInt e) {
   const PDLaw *law;
   PetscReal    dd;
   if (!m->softening) return 0;

@@ -4,7 +4,8 @@
 
 PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb);
-PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J, PetscInt *nregularised);
+PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
+                                   PetscInt *nregularised);
 PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
 PetscReal      PDModelBondDamage(const PDModel *, PetscInt e);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);

@@ -3,8 +3,7 @@
 #include "pd_model.h"
 #include <petscpc.h>
 
-PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J)
-{
+PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
   const PDLattice *lat = m->lat;
   const PDBonds   *bd  = m->bonds;
   const PetscInt   bs  = m->bs;
@@ -20,7 +19,7 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J)
     dnnz[i] = dnnzu[i] = 1;
     onnz[i] = onnzu[i] = 0;
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
-      const PetscInt e = bd->inc_bond[p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
+      const PetscInt  e = bd->inc_bond[p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
       const PetscBool upper = lat->gid[j] > lat->gid[i];
       if (j < lat->nowned) {
         dnnz[i]++;

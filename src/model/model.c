@@ -2,8 +2,7 @@
 #include "pd_model.h"
 #include "kernel.h"
 
-static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v)
-{
+static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v) {
   PetscFunctionBeginUser;
   PetscCall(VecCreate(lat->comm, v));
   PetscCall(VecSetSizes(*v, bs * lat->nowned, PETSC_DECIDE));
@@ -13,12 +12,11 @@ static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v)
 }
 
 /* Diagonal of a node's 3x3 stiffness block, sum over its bonds of (c/|xi|) e e^T. */
-static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3])
-{
+static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3]) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
-    const PetscInt   e = bd->inc_bond[p];
+    const PetscInt   e  = bd->inc_bond[p];
     const PetscReal *xa = &lat->x[3 * bd->a[e]], *xb = &lat->x[3 * bd->b[e]];
     PetscReal        L2 = 0;
     for (PetscInt a = 0; a < 3; a++) L2 += (xb[a] - xa[a]) * (xb[a] - xa[a]);
@@ -28,8 +26,7 @@ static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[
 
 /* Constrained dofs: supports, prescribed displacements and nodes that have no bond at all. Two regions
    constraining the same dof, or a force on a constrained dof, are conflicting input. */
-static PetscErrorCode SetupConstraints(PDModel *m)
-{
+static PetscErrorCode SetupConstraints(PDModel *m) {
   const PDScene   *sc  = m->scene;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
@@ -150,12 +147,11 @@ static PetscErrorCode SetupConstraints(PDModel *m)
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SetupPatterns(PDModel *m)
-{
+static PetscErrorCode SetupPatterns(PDModel *m) {
   const PDScene   *sc   = m->scene;
   const PDLattice *lat  = m->lat;
   const PDRegion  *load = &sc->region[sc->load_region], *dreg = &sc->region[sc->disp_region];
-  const PetscInt   bs   = m->bs;
+  const PetscInt   bs = m->bs;
   PetscReal        dir[3], norm = 0;
   PetscInt         n = 0, gn;
   PetscScalar     *lp, *dp;
@@ -164,8 +160,8 @@ static PetscErrorCode SetupPatterns(PDModel *m)
   for (PetscInt a = 0; a < 3; a++) norm += load->vector[a] * load->vector[a];
   norm = PetscSqrtReal(norm);
   for (PetscInt a = 0; a < 3; a++) dir[a] = load->vector[a] / norm;
-  m->load_sign_force  = load->kind == PD_REGION_FORCE ? 1 : 0;
-  m->force_magnitude  = norm;
+  m->load_sign_force = load->kind == PD_REGION_FORCE ? 1 : 0;
+  m->force_magnitude = norm;
   PetscCall(VecGetArray(m->load_pattern, &lp));
   PetscCall(VecGetArray(m->disp_pattern, &dp));
   for (PetscInt i = 0; i < lat->nowned; i++) {
@@ -188,13 +184,15 @@ static PetscErrorCode SetupPatterns(PDModel *m)
     for (PetscInt a = 0; a < lat->dim; a++) {
       const PetscInt  stride[3] = {lat->n[1] * lat->n[2], lat->n[2], 1};
       const PetscReal i1 = (PetscReal)((g1 / stride[a]) % lat->n[a]), i2 = (PetscReal)((g2 / stride[a]) % lat->n[a]);
-      e[a]                      = (i2 - i1) * lat->dx;
+      e[a] = (i2 - i1) * lat->dx;
       len += e[a] * e[a];
     }
     for (PetscInt a = 0; a < bs; a++) v[a] = e[a] / PetscSqrtReal(len);
-    if (g2 >= lat->gid_start && g2 < lat->gid_start + lat->nowned) PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g2, v, INSERT_VALUES));
+    if (g2 >= lat->gid_start && g2 < lat->gid_start + lat->nowned)
+      PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g2, v, INSERT_VALUES));
     for (PetscInt a = 0; a < bs; a++) v[a] = -v[a];
-    if (g1 >= lat->gid_start && g1 < lat->gid_start + lat->nowned) PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g1, v, INSERT_VALUES));
+    if (g1 >= lat->gid_start && g1 < lat->gid_start + lat->nowned)
+      PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g1, v, INSERT_VALUES));
     PetscCall(VecAssemblyBegin(m->cmod_pattern));
     PetscCall(VecAssemblyEnd(m->cmod_pattern));
   }
@@ -203,12 +201,11 @@ static PetscErrorCode SetupPatterns(PDModel *m)
 
 /* Diagonal for constrained dofs: the mean diagonal of the bond stiffness, so that the eliminated
    rows do not spoil the conditioning. */
-static PetscErrorCode SetupScale(PDModel *m)
-{
+static PetscErrorCode SetupScale(PDModel *m) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   PetscReal        sum = 0, gsum;
-  PetscInt         n = lat->nowned, gn;
+  PetscInt         n   = lat->nowned, gn;
 
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
@@ -228,14 +225,13 @@ static PetscErrorCode SetupScale(PDModel *m)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBonds *bd, PDModel *m)
-{
+PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBonds *bd, PDModel *m) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof *m));
-  m->scene  = sc;
-  m->lat    = lat;
-  m->bonds  = bd;
-  m->bs     = sc->dim;
+  m->scene = sc;
+  m->lat   = lat;
+  m->bonds = bd;
+  m->bs    = sc->dim;
   for (PetscInt k = 0; k < sc->nmaterials; k++) {
     PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
     if (sc->material[k].law != PD_LAW_ELASTIC) m->softening = PETSC_TRUE;
@@ -277,8 +273,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelDestroy(PDModel *m)
-{
+PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscFunctionBeginUser;
   PetscCall(VecDestroy(&m->u_local));
   PetscCall(VecDestroy(&m->f_local));
@@ -299,8 +294,7 @@ PetscErrorCode PDModelDestroy(PDModel *m)
 /* Copies the owned displacement into the ghosted work vector and fetches the ghosts. Constrained
    dofs take their prescribed values whatever u holds (lifting), so the internal force of free dofs
    does not depend on constrained ones: the Jacobian with eliminated columns is then exact. */
-PetscErrorCode PDModelScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc)
-{
+PetscErrorCode PDModelScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc) {
   PetscScalar *w;
 
   PetscFunctionBeginUser;
@@ -316,16 +310,14 @@ PetscErrorCode PDModelScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, 
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelRestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
-{
+PetscErrorCode PDModelRestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc) {
   PetscFunctionBeginUser;
   PetscCall(VecRestoreArrayRead(*loc, ul));
   PetscCall(VecGhostRestoreLocalForm(m->u_local, loc));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F)
-{
+PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
   const PetscScalar *ul;
   PetscScalar       *fl, *f;
   Vec                uloc, floc;
@@ -345,8 +337,7 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F)
 }
 
 /* R = F_int(u) - lambda F_ref on free dofs, bc_scale (u - lambda u_ref) on constrained ones. */
-PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx)
-{
+PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
   PDModel           *m = (PDModel *)ctx;
   const PetscScalar *uu, *fr, *ur, *fx;
   PetscScalar       *r;
@@ -373,8 +364,7 @@ PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx)
-{
+PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
   PDModel           *m = (PDModel *)ctx;
   const PetscScalar *ul;
   Vec                uloc;
@@ -402,8 +392,7 @@ PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx)
 }
 
 /* Sets the constrained dofs of u to their prescribed values at load factor lambda. */
-PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u)
-{
+PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u) {
   const PetscScalar *ur, *fx;
   PetscScalar       *uu;
 
@@ -422,12 +411,12 @@ PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u)
 
 /* Curve quantities: load (applied force, or reaction of a displacement region along its direction),
    mean displacement of the displacement region along the load direction, and the CMOD gauge. */
-PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod)
-{
+PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod) {
   PetscScalar v;
 
   PetscFunctionBeginUser;
-  if (m->load_sign_force) *load = m->lambda * m->force_magnitude;
+  if (m->load_sign_force)
+    *load = m->lambda * m->force_magnitude;
   else {
     Vec F;
     PetscCall(VecDuplicate(u, &F));

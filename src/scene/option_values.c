@@ -6,8 +6,7 @@
 
 /* PETSc's own readers report a bad number without the option's name; these parse the text themselves. */
 
-static PetscErrorCode ParseReal(const char *opt, const char *text, PetscReal *value)
-{
+static PetscErrorCode ParseReal(const char *opt, const char *text, PetscReal *value) {
   char  *end;
   double v;
 
@@ -16,24 +15,23 @@ static PetscErrorCode ParseReal(const char *opt, const char *text, PetscReal *va
   errno = 0;
   v     = strtod(text, &end);
   while (end && isspace((unsigned char)*end)) end++;
-  PetscCheck(end != text && *end == '\0' && errno == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: value '%s' is not a number", opt, text);
-  PetscCheck(PetscIsNormalReal((PetscReal)v) || v == 0.0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: value '%s' is not a finite number", opt,
+  PetscCheck(end != text && *end == '\0' && errno == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: value '%s' is not a number", opt,
              text);
+  PetscCheck(PetscIsNormalReal((PetscReal)v) || v == 0.0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: value '%s' is not a finite number", opt, text);
   *value = (PetscReal)v;
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadText(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *shown, char *buf, size_t len,
-                               PetscBool *set)
-{
+static PetscErrorCode ReadText(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *shown, char *buf,
+                               size_t len, PetscBool *set) {
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(buf, shown, len));
   PetscCall(PetscOptionsString(opt, help, NULL, shown, buf, len, set));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDOptionReal(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *value, PetscBool *set)
-{
+PetscErrorCode PDOptionReal(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *value, PetscBool *set) {
   char      shown[64], buf[256];
   PetscBool flg;
 
@@ -45,8 +43,7 @@ PetscErrorCode PDOptionReal(PetscOptionItems *PetscOptionsObject, const char *op
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscInt *value, PetscBool *set)
-{
+PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscInt *value, PetscBool *set) {
   char      shown[64], buf[256], *end;
   PetscBool flg;
   long      v;
@@ -66,8 +63,7 @@ PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, const char *opt
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscBool *value, PetscBool *set)
-{
+PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscBool *value, PetscBool *set) {
   char      buf[64];
   PetscBool flg, t = PETSC_FALSE, f = PETSC_FALSE;
 
@@ -76,8 +72,10 @@ PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, const char *op
   if (flg) {
     /* a bare flag (-pd_progress) arrives as an empty string and means true */
     if (!buf[0]) t = PETSC_TRUE;
-    for (const char *const *w = (const char *const[]){"true", "yes", "on", "1", NULL}; *w && !t; w++) PetscCall(PetscStrcasecmp(buf, *w, &t));
-    for (const char *const *w = (const char *const[]){"false", "no", "off", "0", NULL}; *w && !f; w++) PetscCall(PetscStrcasecmp(buf, *w, &f));
+    for (const char *const *w = (const char *const[]){"true", "yes", "on", "1", NULL}; *w && !t; w++)
+      PetscCall(PetscStrcasecmp(buf, *w, &t));
+    for (const char *const *w = (const char *const[]){"false", "no", "off", "0", NULL}; *w && !f; w++)
+      PetscCall(PetscStrcasecmp(buf, *w, &f));
     PetscCheck(t || f, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: value '%s' is not true or false", opt, buf);
     *value = t ? PETSC_TRUE : PETSC_FALSE;
   }
@@ -85,11 +83,10 @@ PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, const char *op
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *const *names, PetscInt nnames,
-                            PetscInt *value, PetscBool *set)
-{
+PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *const *names,
+                            PetscInt nnames, PetscInt *value, PetscBool *set) {
   char      buf[64], choices[512] = "";
-  PetscBool flg, match = PETSC_FALSE;
+  PetscBool flg, match            = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(ReadText(PetscOptionsObject, opt, help, names[*value], buf, sizeof buf, &flg));
@@ -111,8 +108,7 @@ PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, const char *op
 }
 
 PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *values, PetscInt *n,
-                                 PetscBool *set)
-{
+                                 PetscBool *set) {
   char      buf[1024], shown[512] = "", item[64];
   PetscBool flg;
   PetscInt  cap = *n, count = 0;
@@ -139,8 +135,8 @@ PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, const cha
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDOptionString(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, char *value, size_t len, PetscBool *set)
-{
+PetscErrorCode PDOptionString(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, char *value, size_t len,
+                              PetscBool *set) {
   char      buf[PETSC_MAX_PATH_LEN];
   PetscBool flg;
 

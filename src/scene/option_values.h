@@ -6,9 +6,10 @@
 PetscErrorCode PDOptionReal(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *value, PetscBool *set);
 PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscInt *value, PetscBool *set);
 PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscBool *value, PetscBool *set);
-PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *const *names, PetscInt nnames,
-                            PetscInt *value, PetscBool *set);
+PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *const *names,
+                            PetscInt nnames, PetscInt *value, PetscBool *set);
 /* Reads a comma-separated list of reals; *n on input is the capacity, on output the count read. */
 PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *values, PetscInt *n,
                                  PetscBool *set);
-PetscErrorCode PDOptionString(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, char *value, size_t len, PetscBool *set);
+PetscErrorCode PDOptionString(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, char *value, size_t len,
+                              PetscBool *set);

@@ -4,21 +4,20 @@
 #include <petscviewer.h>
 #include <string.h>
 
-const char *const PDModelKinds[]      = {"3d", "plane_stress", "plane_strain"};
-const char *const PDInfluences[]      = {"constant", "conical", "quartic"};
-const char *const PDKinematicsNames[] = {"small", "finite"};
-const char *const PDLawNames[]        = {"elastic", "linear", "bilinear", "trilinear", "nonlinear"};
-const char *const PDStretchNames[]    = {"exact", "modified"};
-const char *const PDControlNames[]    = {"displacement", "force"};
-const char *const PDTangentNames[]    = {"consistent", "secant"};
-const char *const PDShapes[]          = {"box", "cylinder"};
-const char *const PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
-static const char *const PDModes[]    = {"implicit", "explicit"};
+const char *const        PDModelKinds[]      = {"3d", "plane_stress", "plane_strain"};
+const char *const        PDInfluences[]      = {"constant", "conical", "quartic"};
+const char *const        PDKinematicsNames[] = {"small", "finite"};
+const char *const        PDLawNames[]        = {"elastic", "linear", "bilinear", "trilinear", "nonlinear"};
+const char *const        PDStretchNames[]    = {"exact", "modified"};
+const char *const        PDControlNames[]    = {"displacement", "force"};
+const char *const        PDTangentNames[]    = {"consistent", "secant"};
+const char *const        PDShapes[]          = {"box", "cylinder"};
+const char *const        PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
+static const char *const PDModes[]           = {"implicit", "explicit"};
 
 /* 2D scenes give boxes as x0,y0,x1,y1 and points as x,y; store them in 3D form with z = 0. */
 static PetscErrorCode ReadBox(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, const char *help, PetscReal box[6],
-                              PetscBool *set)
-{
+                              PetscBool *set) {
   PetscReal v[6];
   PetscInt  n = 2 * sc->dim;
 
@@ -30,8 +29,8 @@ static PetscErrorCode ReadBox(PetscOptionItems *PetscOptionsObject, const PDScen
   }
   PetscCall(PDOptionRealArray(PetscOptionsObject, opt, help, v, &n, set));
   if (*set) {
-    PetscCheck(n == 2 * sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected %" PetscInt_FMT " numbers (lower corner, upper corner), got %" PetscInt_FMT,
-               opt, 2 * sc->dim, n);
+    PetscCheck(n == 2 * sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: expected %" PetscInt_FMT " numbers (lower corner, upper corner), got %" PetscInt_FMT, opt, 2 * sc->dim, n);
     for (PetscInt a = 0; a < 3; a++) {
       box[a]     = a < sc->dim ? PetscMin(v[a], v[sc->dim + a]) : 0;
       box[3 + a] = a < sc->dim ? PetscMax(v[a], v[sc->dim + a]) : 0;
@@ -42,8 +41,7 @@ static PetscErrorCode ReadBox(PetscOptionItems *PetscOptionsObject, const PDScen
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadDofs(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, PetscBool dof[3], PetscBool *set)
-{
+static PetscErrorCode ReadDofs(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, PetscBool dof[3], PetscBool *set) {
   char buf[64] = "";
 
   PetscFunctionBeginUser;
@@ -53,35 +51,32 @@ static PetscErrorCode ReadDofs(PetscOptionItems *PetscOptionsObject, const PDSce
   for (const char *p = buf; *p; p++) {
     if (*p == ',' || *p == ' ') continue;
     PetscInt a = (*p == 'x' || *p == 'X') ? 0 : (*p == 'y' || *p == 'Y') ? 1 : (*p == 'z' || *p == 'Z') ? 2 : -1;
-    PetscCheck(a >= 0 && a < sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: unknown component '%c' in '%s' (use %s)", opt, *p, buf,
-               sc->dim == 3 ? "x, y, z" : "x, y");
+    PetscCheck(a >= 0 && a < sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: unknown component '%c' in '%s' (use %s)", opt, *p,
+               buf, sc->dim == 3 ? "x, y, z" : "x, y");
     dof[a] = PETSC_TRUE;
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadVector(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, const char *help, PetscReal vec[3],
-                                 PetscBool *set)
-{
+static PetscErrorCode ReadVector(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, const char *help,
+                                 PetscReal vec[3], PetscBool *set) {
   PetscInt n = sc->dim;
 
   PetscFunctionBeginUser;
   PetscCall(PDOptionRealArray(PetscOptionsObject, opt, help, vec, &n, set));
-  PetscCheck(!*set || n == sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected %" PetscInt_FMT " components, got %" PetscInt_FMT, opt,
-             sc->dim, n);
+  PetscCheck(!*set || n == sc->dim, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: expected %" PetscInt_FMT " components, got %" PetscInt_FMT, opt, sc->dim, n);
   if (sc->dim == 2) vec[2] = 0;
   PetscFunctionReturn(0);
 }
 
-static PetscBool BoxesOverlap(const PetscReal a[6], const PetscReal b[6], PetscInt dim, PetscReal tol)
-{
+static PetscBool BoxesOverlap(const PetscReal a[6], const PetscReal b[6], PetscInt dim, PetscReal tol) {
   for (PetscInt k = 0; k < dim; k++)
     if (a[k] > b[3 + k] + tol || b[k] > a[3 + k] + tol) return PETSC_FALSE;
   return PETSC_TRUE;
 }
 
-static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k)
-{
+static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
   PDMaterial *m = &sc->material[k];
   char        opt[64];
   PetscBool   set;
@@ -97,9 +92,10 @@ static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene
     *m = sc->material[0];
     PetscCall(PetscSNPrintf(m->option, sizeof m->option, "-pd_material%" PetscInt_FMT, k));
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", m->option));
-    PetscCall(ReadBox(PetscOptionsObject, sc, opt, "Region of this material (later materials win where boxes overlap)", m->where.box, &set));
-    PetscCheck(BoxesOverlap(m->where.box, sc->domain, sc->dim, 0), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: box lies outside the domain -pd_domain",
-               opt);
+    PetscCall(
+        ReadBox(PetscOptionsObject, sc, opt, "Region of this material (later materials win where boxes overlap)", m->where.box, &set));
+    PetscCheck(BoxesOverlap(m->where.box, sc->domain, sc->dim, 0), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: box lies outside the domain -pd_domain", opt);
     law = m->law;
   }
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_E", m->option));
@@ -109,7 +105,8 @@ static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene
   PetscCall(PDOptionReal(PetscOptionsObject, opt, "Density (kg/m^3)", &m->rho, NULL));
   PetscCheck(m->rho > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: density must be positive, got %g", opt, (double)m->rho);
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_law", m->option));
-  PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bond law: elastic, linear (brittle), bilinear, trilinear, nonlinear", PDLawNames, 5, &law, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bond law: elastic, linear (brittle), bilinear, trilinear, nonlinear", PDLawNames, 5,
+                         &law, NULL));
   m->law = (PDLawKind)law;
   if (m->law == PD_LAW_ELASTIC) PetscFunctionReturn(0);
   {
@@ -121,21 +118,23 @@ static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene
     PetscCheck(m->ft > 0 || m->law == PD_LAW_LINEAR || (m->law == PD_LAW_BILINEAR && !m->bobaru), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
                "Option %s: tensile strength must be positive, got %g", opt, (double)m->ft);
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_fcm", m->option));
-    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Mean compressive strength (MPa): G_F = 73 fcm^0.18 (fib MC2010) when no G_F is given", &fcm, &set_fcm));
+    PetscCall(PDOptionReal(PetscOptionsObject, opt, "Mean compressive strength (MPa): G_F = 73 fcm^0.18 (fib MC2010) when no G_F is given",
+                           &fcm, &set_fcm));
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_Gf", m->option));
     PetscCall(PDOptionReal(PetscOptionsObject, opt, "Fracture energy (N/m)", &m->Gf, &set_gf));
     if (!set_gf && set_fcm) m->Gf = 73 * PetscPowReal(fcm, 0.18);
     PetscCheck(m->Gf > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: fracture energy must be positive, got %g", opt, (double)m->Gf);
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_bilinear_form", m->option));
-    PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bilinear law: zaccariotto (s_c = k_r s0) or bobaru (s0 = ft/E)", (const char *const[]){"zaccariotto", "bobaru"}, 2,
-                           &form, NULL));
+    PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Bilinear law: zaccariotto (s_c = k_r s0) or bobaru (s0 = ft/E)",
+                           (const char *const[]){"zaccariotto", "bobaru"}, 2, &form, NULL));
     m->bobaru = form ? PETSC_TRUE : PETSC_FALSE;
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_bilinear_kr", m->option));
     PetscCall(PDOptionReal(PetscOptionsObject, opt, "Bilinear law (Zaccariotto): k_r = s_c/s0", &m->kr, NULL));
     PetscCheck(m->kr > 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must exceed 1, got %g", opt, (double)m->kr);
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_trilinear_beta", m->option));
     PetscCall(PDOptionReal(PetscOptionsObject, opt, "Trilinear law: force ratio at the kink", &m->beta, NULL));
-    PetscCheck(m->beta > 0 && m->beta < 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must lie in (0, 1), got %g", opt, (double)m->beta);
+    PetscCheck(m->beta > 0 && m->beta < 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must lie in (0, 1), got %g", opt,
+               (double)m->beta);
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_nonlinear_k", m->option));
     PetscCall(PDOptionReal(PetscOptionsObject, opt, "Non-linear law: exponent k", &m->k, NULL));
     PetscCheck(m->k > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must be positive, got %g", opt, (double)m->k);
@@ -146,8 +145,7 @@ static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadNotch(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k)
-{
+static PetscErrorCode ReadNotch(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
   PDNotch  *n = &sc->notch[k];
   char      opt[64];
   PetscBool set;
@@ -163,20 +161,21 @@ static PetscErrorCode ReadNotch(PetscOptionItems *PetscOptionsObject, PDScene *s
       n->normal = a;
       nflat++;
     }
-  PetscCheck(nflat == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a notch box must be flat (zero width) along exactly one axis, %" PetscInt_FMT " are flat",
-             opt, nflat);
-  PetscCheck(BoxesOverlap(n->box, sc->domain, sc->dim, tol), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: notch lies outside the domain -pd_domain", opt);
+  PetscCheck(nflat == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: a notch box must be flat (zero width) along exactly one axis, %" PetscInt_FMT " are flat", opt, nflat);
+  PetscCheck(BoxesOverlap(n->box, sc->domain, sc->dim, tol), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: notch lies outside the domain -pd_domain", opt);
   {
     PetscBool covers = PETSC_TRUE;
     for (PetscInt a = 0; a < sc->dim; a++)
       if (a != n->normal && (n->box[a] > sc->domain[a] + tol || n->box[3 + a] < sc->domain[3 + a] - tol)) covers = PETSC_FALSE;
-    PetscCheck(!covers, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: the notch spans the whole cross-section and would split the body in two", opt);
+    PetscCheck(!covers, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: the notch spans the whole cross-section and would split the body in two", opt);
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k)
-{
+static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
   PDRegion *r = &sc->region[k];
   char      opt[64], opt2[64];
   PetscBool set_box, set_cyl, set, set_vec;
@@ -186,9 +185,11 @@ static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(r->option, sizeof r->option, "-pd_region%" PetscInt_FMT, k));
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", r->option));
-  PetscCall(ReadBox(PetscOptionsObject, sc, opt, "Node region: box (flat along an axis selects one layer of nodes)", r->where.box, &set_box));
+  PetscCall(
+      ReadBox(PetscOptionsObject, sc, opt, "Node region: box (flat along an axis selects one layer of nodes)", r->where.box, &set_box));
   PetscCall(PetscSNPrintf(opt2, sizeof opt2, "%s_cylinder", r->option));
-  PetscCall(PDOptionRealArray(PetscOptionsObject, opt2, "Node region: cylinder as centre x,y,z and radius (axis from _axis)", cyl, &n, &set_cyl));
+  PetscCall(
+      PDOptionRealArray(PetscOptionsObject, opt2, "Node region: cylinder as centre x,y,z and radius (axis from _axis)", cyl, &n, &set_cyl));
   PetscCheck(set_box != set_cyl, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Options %s and %s: give exactly one of them", opt, opt2);
   if (set_box) {
     r->where.shape = PD_SHAPE_BOX;
@@ -202,7 +203,8 @@ static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *
     r->where.radius = cyl[3];
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_axis", r->option));
     PetscCall(PDOptionEnum(PetscOptionsObject, opt, "Cylinder axis", (const char *const[]){"x", "y", "z"}, 3, &axis, NULL));
-    PetscCheck(sc->dim == 3 || axis == 2, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a 2D scene's cylinder (a disc) has axis z", opt);
+    PetscCheck(sc->dim == 3 || axis == 2, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a 2D scene's cylinder (a disc) has axis z",
+               opt);
     r->where.axis = axis;
     for (PetscInt a = 0; a < sc->dim; a++)
       if (a != axis)
@@ -216,23 +218,27 @@ static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_dofs", r->option));
   PetscCall(ReadDofs(PetscOptionsObject, sc, opt, r->dof, &set));
   if (r->kind == PD_REGION_SUPPORT || r->kind == PD_REGION_DISPLACEMENT)
-    PetscCheck(set && (r->dof[0] || r->dof[1] || r->dof[2]), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a %s region", opt,
-               PDRegionKinds[r->kind]);
-  else PetscCheck(!set, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a %s region constrains no components", opt, PDRegionKinds[r->kind]);
+    PetscCheck(set && (r->dof[0] || r->dof[1] || r->dof[2]), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a %s region",
+               opt, PDRegionKinds[r->kind]);
+  else
+    PetscCheck(!set, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a %s region constrains no components", opt, PDRegionKinds[r->kind]);
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_%s", r->option, r->kind == PD_REGION_FORCE ? "force" : "displacement"));
   if (r->kind == PD_REGION_FORCE || r->kind == PD_REGION_DISPLACEMENT) {
-    PetscCall(ReadVector(PetscOptionsObject, sc, opt, r->kind == PD_REGION_FORCE ? "Total force (N) at load factor 1, spread evenly over the nodes" : "Prescribed displacement (m) at load factor 1", r->vector, &set_vec));
+    PetscCall(ReadVector(PetscOptionsObject, sc, opt,
+                         r->kind == PD_REGION_FORCE ? "Total force (N) at load factor 1, spread evenly over the nodes"
+                                                    : "Prescribed displacement (m) at load factor 1",
+                         r->vector, &set_vec));
     PetscCheck(set_vec, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a %s region", opt, PDRegionKinds[r->kind]);
-    PetscCheck(r->vector[0] != 0 || r->vector[1] != 0 || r->vector[2] != 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: the vector is zero", opt);
+    PetscCheck(r->vector[0] != 0 || r->vector[1] != 0 || r->vector[2] != 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: the vector is zero", opt);
     for (PetscInt a = 0; a < 3 && r->kind == PD_REGION_DISPLACEMENT; a++)
-      PetscCheck(r->dof[a] || r->vector[a] == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: component %c is non-zero but not listed in %s_dofs", opt,
-                 (char)('x' + a), r->option);
+      PetscCheck(r->dof[a] || r->vector[a] == 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+                 "Option %s: component %c is non-zero but not listed in %s_dofs", opt, (char)('x' + a), r->option);
   }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode HasOption(const char *fmt, PetscInt k, PetscBool *has)
-{
+static PetscErrorCode HasOption(const char *fmt, PetscInt k, PetscBool *has) {
   char opt[64];
 
   PetscFunctionBeginUser;
@@ -243,8 +249,7 @@ static PetscErrorCode HasOption(const char *fmt, PetscInt k, PetscBool *has)
 
 /* A relative data path in a scene is taken relative to the directory of the options file, so that a
    scene runs from any working directory. */
-static PetscErrorCode ResolveNextToOptionsFile(char *path, size_t len)
-{
+static PetscErrorCode ResolveNextToOptionsFile(char *path, size_t len) {
   int    argc;
   char **argv;
   char   dir[PETSC_MAX_PATH_LEN] = "", joined[PETSC_MAX_PATH_LEN];
@@ -267,8 +272,7 @@ static PetscErrorCode ResolveNextToOptionsFile(char *path, size_t len)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
-{
+PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscBool set, has;
   PetscInt  model = PD_MODEL_3D, influence = PD_INFLUENCE_CONSTANT, kin = PD_KINEMATICS_SMALL, mode = 0, n;
   PetscReal dom[6];
@@ -298,8 +302,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   sc->dlambda_min        = 1e-6;
 
   PetscOptionsBegin(comm, NULL, "pdimplicit scene", NULL);
-  PetscCall(PDOptionString(PetscOptionsObject, "-pd_name", "Scene name (names the default output directory)", sc->name, sizeof sc->name, NULL));
-  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_mode", "Solution path: implicit (static) or explicit (dynamic relaxation)", PDModes, 2, &mode, NULL));
+  PetscCall(
+      PDOptionString(PetscOptionsObject, "-pd_name", "Scene name (names the default output directory)", sc->name, sizeof sc->name, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_mode", "Solution path: implicit (static) or explicit (dynamic relaxation)", PDModes, 2,
+                         &mode, NULL));
   PetscCheck(mode == 0, comm, PETSC_ERR_SUP, "Option -pd_mode: value 'explicit' is not available in this version");
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_model", "Spatial model", PDModelKinds, 3, &model, NULL));
   sc->model = (PDModelKind)model;
@@ -310,8 +316,9 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   PetscCall(PetscArrayzero(dom, 6));
   PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_domain", "Body box: lower corner then upper corner (m)", dom, &n, &set));
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Option -pd_domain is required: give a scene with -options_file scene.opts");
-  PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT, "Option -pd_domain: expected %" PetscInt_FMT " numbers for a %" PetscInt_FMT "D model, got %" PetscInt_FMT,
-             2 * sc->dim, sc->dim, n);
+  PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_domain: expected %" PetscInt_FMT " numbers for a %" PetscInt_FMT "D model, got %" PetscInt_FMT, 2 * sc->dim,
+             sc->dim, n);
   for (PetscInt a = 0; a < 3; a++) {
     sc->domain[a]     = a < sc->dim ? dom[a] : 0;
     sc->domain[3 + a] = a < sc->dim ? dom[sc->dim + a] : 0;
@@ -322,25 +329,28 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   PetscCheck(set, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx is required");
   PetscCheck(sc->dx > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: grid spacing must be positive, got %g", (double)sc->dx);
   for (PetscInt a = 0; a < sc->dim; a++)
-    PetscCheck(sc->dx <= sc->domain[3 + a] - sc->domain[a] + 1e-12, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: %g exceeds the domain size along %c",
-               (double)sc->dx, (char)('x' + a));
+    PetscCheck(sc->dx <= sc->domain[3 + a] - sc->domain[a] + 1e-12, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_dx: %g exceeds the domain size along %c", (double)sc->dx, (char)('x' + a));
   PetscCall(PDOptionReal(PetscOptionsObject, "-pd_horizon_ratio", "Horizon over grid spacing, m = delta/dx", &sc->horizon_ratio, NULL));
-  PetscCheck(sc->horizon_ratio >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_horizon_ratio: must be at least 1 (horizon no smaller than the grid spacing), got %g",
-             (double)sc->horizon_ratio);
+  PetscCheck(sc->horizon_ratio >= 1, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_horizon_ratio: must be at least 1 (horizon no smaller than the grid spacing), got %g", (double)sc->horizon_ratio);
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_influence", "Influence function", PDInfluences, 3, &influence, NULL));
   sc->influence = (PDInfluence)influence;
-  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_partial_volume", "PA-PDLAMMPS partial volumes at the horizon edge", &sc->partial_volume, NULL));
+  PetscCall(
+      PDOptionBool(PetscOptionsObject, "-pd_partial_volume", "PA-PDLAMMPS partial volumes at the horizon edge", &sc->partial_volume, NULL));
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_surface_correction", "Volume-method surface correction", &sc->surface_correction, NULL));
-  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_kinematics", "Bond stretch: small (linearised) or finite (exact)", PDKinematicsNames, 2, &kin, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_kinematics", "Bond stretch: small (linearised) or finite (exact)", PDKinematicsNames, 2,
+                         &kin, NULL));
   sc->kinematics = (PDKinematics)kin;
   {
     PetscInt v = sc->stretch;
-    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_stretch", "Finite-kinematics stretch: exact or modified (Miranda et al. 2018, no square root)", PDStretchNames,
-                           2, &v, NULL));
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_stretch",
+                           "Finite-kinematics stretch: exact or modified (Miranda et al. 2018, no square root)", PDStretchNames, 2, &v,
+                           NULL));
     sc->stretch = (PDStretch)v;
   }
-  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction", "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)",
-                         &sc->sc_correction, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction",
+                         "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)", &sc->sc_correction, NULL));
 
   sc->nmaterials = 1;
   PetscCall(ReadMaterial(PetscOptionsObject, sc, 0));
@@ -364,67 +374,85 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
     PetscCall(ReadRegion(PetscOptionsObject, sc, k));
     sc->nregions++;
   }
-  PetscCheck(sc->nregions > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_region0_box: the scene defines no node regions (supports and loads)");
+  PetscCheck(sc->nregions > 0, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_region0_box: the scene defines no node regions (supports and loads)");
   for (PetscInt k = 0; k < sc->nregions && sc->load_region < 0; k++)
     if (sc->region[k].kind == PD_REGION_FORCE || sc->region[k].kind == PD_REGION_DISPLACEMENT) sc->load_region = k;
-  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_load_region", "Region whose applied force or reaction is the curve's load", &sc->load_region, NULL));
-  PetscCheck(sc->load_region >= 0 && sc->load_region < sc->nregions && (sc->region[sc->load_region].kind == PD_REGION_FORCE || sc->region[sc->load_region].kind == PD_REGION_DISPLACEMENT),
-             comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: %" PetscInt_FMT " is not a force or displacement region", sc->load_region);
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_load_region", "Region whose applied force or reaction is the curve's load",
+                        &sc->load_region, NULL));
+  PetscCheck(sc->load_region >= 0 && sc->load_region < sc->nregions &&
+                 (sc->region[sc->load_region].kind == PD_REGION_FORCE || sc->region[sc->load_region].kind == PD_REGION_DISPLACEMENT),
+             comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: %" PetscInt_FMT " is not a force or displacement region",
+             sc->load_region);
   sc->disp_region = sc->load_region;
-  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_disp_region", "Region whose mean displacement along the load direction is the curve's displacement",
-                        &sc->disp_region, NULL));
-  PetscCheck(sc->disp_region >= 0 && sc->disp_region < sc->nregions, comm, PETSC_ERR_USER_INPUT, "Option -pd_disp_region: %" PetscInt_FMT " is not a region",
-             sc->disp_region);
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_disp_region",
+                        "Region whose mean displacement along the load direction is the curve's displacement", &sc->disp_region, NULL));
+  PetscCheck(sc->disp_region >= 0 && sc->disp_region < sc->nregions, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_disp_region: %" PetscInt_FMT " is not a region", sc->disp_region);
   {
     PetscReal pts[6] = {0, 0, 0, 0, 0, 0};
     n                = 2 * sc->dim;
-    PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_cmod_points", "CMOD gauge: two points; opening measured along the line joining their nearest nodes", pts,
-                                &n, &sc->has_cmod));
+    PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_cmod_points",
+                                "CMOD gauge: two points; opening measured along the line joining their nearest nodes", pts, &n,
+                                &sc->has_cmod));
     if (sc->has_cmod) {
-      PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT, "Option -pd_cmod_points: expected %" PetscInt_FMT " numbers, got %" PetscInt_FMT, 2 * sc->dim, n);
+      PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_cmod_points: expected %" PetscInt_FMT " numbers, got %" PetscInt_FMT, 2 * sc->dim, n);
       for (PetscInt p = 0; p < 2; p++)
         for (PetscInt a = 0; a < 3; a++) {
           sc->cmod[3 * p + a] = a < sc->dim ? pts[sc->dim * p + a] : 0;
-          PetscCheck(a >= sc->dim || (sc->cmod[3 * p + a] >= sc->domain[a] && sc->cmod[3 * p + a] <= sc->domain[3 + a]), comm, PETSC_ERR_USER_INPUT,
-                     "Option -pd_cmod_points: point %" PetscInt_FMT " lies outside the domain", p + 1);
+          PetscCheck(a >= sc->dim || (sc->cmod[3 * p + a] >= sc->domain[a] && sc->cmod[3 * p + a] <= sc->domain[3 + a]), comm,
+                     PETSC_ERR_USER_INPUT, "Option -pd_cmod_points: point %" PetscInt_FMT " lies outside the domain", p + 1);
         }
     }
   }
-  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_steps", "Load steps to lambda_max (the initial increment when adaptive)", &sc->steps, NULL));
+  PetscCall(
+      PDOptionInt(PetscOptionsObject, "-pd_steps", "Load steps to lambda_max (the initial increment when adaptive)", &sc->steps, NULL));
   PetscCheck(sc->steps >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_steps: must be at least 1, got %" PetscInt_FMT, sc->steps);
   {
-    PetscInt v = sc->region[sc->load_region].kind == PD_REGION_FORCE ? PD_CONTROL_FORCE : PD_CONTROL_DISPLACEMENT, t = sc->tangent;
+    PetscInt  v = sc->region[sc->load_region].kind == PD_REGION_FORCE ? PD_CONTROL_FORCE : PD_CONTROL_DISPLACEMENT, t = sc->tangent;
     PetscBool set;
-    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_control", "Path control: displacement or force (must match the load region's kind)", PDControlNames, 2, &v, &set));
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_control", "Path control: displacement or force (must match the load region's kind)",
+                           PDControlNames, 2, &v, &set));
     sc->control = (PDControl)v;
     PetscCheck((sc->control == PD_CONTROL_FORCE) == (sc->region[sc->load_region].kind == PD_REGION_FORCE), comm, PETSC_ERR_USER_INPUT,
-               "Option -pd_control: '%s' does not match the load region %s, which is a %s region", PDControlNames[sc->control], sc->region[sc->load_region].option,
-               PDRegionKinds[sc->region[sc->load_region].kind]);
-    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_tangent", "Tangent of softening bonds: consistent (quadratic Newton, indefinite) or secant (positive)", PDTangentNames,
-                           2, &t, NULL));
+               "Option -pd_control: '%s' does not match the load region %s, which is a %s region", PDControlNames[sc->control],
+               sc->region[sc->load_region].option, PDRegionKinds[sc->region[sc->load_region].kind]);
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_tangent",
+                           "Tangent of softening bonds: consistent (quadratic Newton, indefinite) or secant (positive)", PDTangentNames, 2,
+                           &t, NULL));
     sc->tangent = (PDTangent)t;
   }
   PetscCall(PDOptionReal(PetscOptionsObject, "-pd_lambda_max", "Load factor at which the path ends", &sc->lambda_max, NULL));
   PetscCheck(sc->lambda_max > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_lambda_max: must be positive, got %g", (double)sc->lambda_max);
   sc->dlambda_max = sc->lambda_max / sc->steps;
   PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dlambda_max", "Largest load-factor increment", &sc->dlambda_max, NULL));
-  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dlambda_min", "Smallest load-factor increment before the run stops", &sc->dlambda_min, NULL));
+  PetscCall(
+      PDOptionReal(PetscOptionsObject, "-pd_dlambda_min", "Smallest load-factor increment before the run stops", &sc->dlambda_min, NULL));
   PetscCheck(sc->dlambda_min > 0 && sc->dlambda_min <= sc->dlambda_max, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_dlambda_min: must be positive and at most -pd_dlambda_max, got %g", (double)sc->dlambda_min);
-  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_stop_cmod", "Stop once the CMOD gauge opens this much (m); 0: off", &sc->stop_cmod, NULL));
+  PetscCall(
+      PDOptionReal(PetscOptionsObject, "-pd_stop_cmod", "Stop once the CMOD gauge opens this much (m); 0: off", &sc->stop_cmod, NULL));
   PetscCheck(sc->stop_cmod >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_stop_cmod: must be non-negative, got %g", (double)sc->stop_cmod);
-  PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT, "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
-  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_max_bonds", "Damage limiter: bond events (entering softening, breaking) per Newton iteration; 0: no cap",
-                        &sc->limiter_max, NULL));
-  PetscCheck(sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT, sc->limiter_max);
-  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_stage_its", "Newton iterations between two grants of the limiter", &sc->limiter_stage_its, NULL));
-  PetscCheck(sc->limiter_stage_its >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_stage_its: must be at least 1, got %" PetscInt_FMT, sc->limiter_stage_its);
+  PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_max_bonds",
+                        "Damage limiter: bond events (entering softening, breaking) per Newton iteration; 0: no cap", &sc->limiter_max,
+                        NULL));
+  PetscCheck(sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT,
+             sc->limiter_max);
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_stage_its", "Newton iterations between two grants of the limiter",
+                        &sc->limiter_stage_its, NULL));
+  PetscCheck(sc->limiter_stage_its >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_stage_its: must be at least 1, got %" PetscInt_FMT,
+             sc->limiter_stage_its);
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_fields_every", "Write fields every N steps (0: last step only)", &sc->fields_every, NULL));
-  PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT, sc->fields_every);
+  PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT,
+             sc->fields_every);
   PetscCall(PetscSNPrintf(sc->output_dir, sizeof sc->output_dir, "output/%s", sc->name));
   PetscCall(PDOptionString(PetscOptionsObject, "-pd_output_dir", "Output directory", sc->output_dir, sizeof sc->output_dir, NULL));
-  PetscCall(PDOptionString(PetscOptionsObject, "-pd_data_file", "Experimental CSV (cmod_mm, load mean/min/max kN) overlaid on curve.svg; relative to the options file", sc->data_file,
-                           sizeof sc->data_file, NULL));
+  PetscCall(PDOptionString(PetscOptionsObject, "-pd_data_file",
+                           "Experimental CSV (cmod_mm, load mean/min/max kN) overlaid on curve.svg; relative to the options file",
+                           sc->data_file, sizeof sc->data_file, NULL));
   sc->progress = PETSC_FALSE;
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_progress", "One-line progress display on stderr", &sc->progress, NULL));
   PetscOptionsEnd();
@@ -437,13 +465,14 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDSceneView(const PDScene *sc, PetscViewer v)
-{
+PetscErrorCode PDSceneView(const PDScene *sc, PetscViewer v) {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(v, "Scene %s: %s, domain [%g %g %g] to [%g %g %g] m, dx %g m, horizon %g dx, influence %s\n", sc->name,
-                                   PDModelKinds[sc->model], (double)sc->domain[0], (double)sc->domain[1], (double)sc->domain[2], (double)sc->domain[3],
-                                   (double)sc->domain[4], (double)sc->domain[5], (double)sc->dx, (double)sc->horizon_ratio, PDInfluences[sc->influence]));
-  PetscCall(PetscViewerASCIIPrintf(v, "  %" PetscInt_FMT " materials, %" PetscInt_FMT " notches, %" PetscInt_FMT " regions, %" PetscInt_FMT " steps, kinematics %s\n",
-                                   sc->nmaterials, sc->nnotches, sc->nregions, sc->steps, PDKinematicsNames[sc->kinematics]));
+                                   PDModelKinds[sc->model], (double)sc->domain[0], (double)sc->domain[1], (double)sc->domain[2],
+                                   (double)sc->domain[3], (double)sc->domain[4], (double)sc->domain[5], (double)sc->dx,
+                                   (double)sc->horizon_ratio, PDInfluences[sc->influence]));
+  PetscCall(PetscViewerASCIIPrintf(
+      v, "  %" PetscInt_FMT " materials, %" PetscInt_FMT " notches, %" PetscInt_FMT " regions, %" PetscInt_FMT " steps, kinematics %s\n",
+      sc->nmaterials, sc->nnotches, sc->nregions, sc->steps, PDKinematicsNames[sc->kinematics]));
   PetscFunctionReturn(0);
 }

@@ -15,22 +15,19 @@ typedef struct {
   PetscInt64 id;
 } Candidate;
 
-static int CompareCandidates(const void *pa, const void *pb)
-{
+static int CompareCandidates(const void *pa, const void *pb) {
   const Candidate *a = (const Candidate *)pa, *b = (const Candidate *)pb;
   if (a->crit != b->crit) return a->crit > b->crit ? -1 : 1;
   return a->id < b->id ? -1 : (a->id > b->id ? 1 : 0);
 }
 
-static int CompareIds(const void *pa, const void *pb)
-{
+static int CompareIds(const void *pa, const void *pb) {
   const PetscInt64 a = *(const PetscInt64 *)pa, b = *(const PetscInt64 *)pb;
   return a < b ? -1 : (a > b ? 1 : 0);
 }
 
 /* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
-static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s)
-{
+static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s) {
   const PetscScalar *ul;
   Vec                loc;
 
@@ -41,20 +38,18 @@ static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s)
   PetscFunctionReturn(0);
 }
 
-static PetscReal Threshold(const PDModel *m, PetscInt e)
-{
+static PetscReal Threshold(const PDModel *m, PetscInt e) {
   const PDLaw *law = &m->law[m->bonds->material[e]];
   return PDLawNextThreshold(law, m->thr ? &m->thr[e] : &law->nominal, (PDBondLevel)m->level[e]);
 }
 
-PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted)
-{
-  const PDBonds   *bd  = m->bonds;
-  const PDLattice *lat = m->lat;
+PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted) {
+  const PDBonds   *bd   = m->bonds;
+  const PDLattice *lat  = m->lat;
   MPI_Comm         comm = lat->comm;
   PetscReal       *s;
   Candidate       *mine, *all = NULL;
-  PetscInt64      *ids = NULL;
+  PetscInt64      *ids   = NULL;
   PetscInt         nmine = 0, nlocal_cand = 0, ntake, nall = 0;
   PetscMPIInt      size, nsend, *counts, *displs;
 
@@ -116,8 +111,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u)
-{
+PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   const PDBonds *bd = m->bonds;
   PetscReal     *s;
   PetscInt       broken = 0;
@@ -139,23 +133,21 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelRestoreLevels(PDModel *m)
-{
+PetscErrorCode PDModelRestoreLevels(PDModel *m) {
   PetscFunctionBeginUser;
   if (m->softening) PetscCall(PetscArraycpy(m->level, m->level_n, m->bonds->nbonds));
   PetscFunctionReturn(0);
 }
 
 /* Nodal damage: the mean damage of a node's bonds (0 intact, 1 all broken). */
-PetscErrorCode PDModelNodalDamage(PDModel *m, Vec damage)
-{
+PetscErrorCode PDModelNodalDamage(PDModel *m, Vec damage) {
   const PDBonds *bd = m->bonds;
   PetscScalar   *d;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArray(damage, &d));
   for (PetscInt i = 0; i < m->lat->nowned; i++) {
-    const PetscInt n = bd->inc_start[i + 1] - bd->inc_start[i];
+    const PetscInt n   = bd->inc_start[i + 1] - bd->inc_start[i];
     PetscReal      sum = 0;
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) sum += PDModelBondDamage(m, bd->inc_bond[p]);
     d[i] = n ? sum / n : 1;

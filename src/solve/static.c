@@ -6,8 +6,7 @@
 
 #define PD_MAX_STAGES 1000000
 
-static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes)
-{
+static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
   KSP ksp;
   PC  pc;
 
@@ -27,8 +26,7 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes)
   PetscFunctionReturn(0);
 }
 
-static PetscBool FieldsDue(const PDScene *sc, PetscInt step, PetscBool last)
-{
+static PetscBool FieldsDue(const PDScene *sc, PetscInt step, PetscBool last) {
   if (last) return PETSC_TRUE;
   return (sc->fields_every > 0 && step % sc->fields_every == 0) ? PETSC_TRUE : PETSC_FALSE;
 }
@@ -40,8 +38,7 @@ typedef struct {
 } StepResult;
 
 /* One load increment: Newton stages until equilibrium holds with no deferred bond event. */
-static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *res)
-{
+static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *res) {
   const PDScene *sc      = m->scene;
   PetscBool      limited = PETSC_FALSE;
   PetscInt       maxit;
@@ -90,15 +87,14 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *r
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec)
-{
+PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
   Mat            J;
   Vec            u, u_n, r;
   PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps;
-  PetscInt       step     = 0;
+  PetscInt       step = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
@@ -133,7 +129,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec)
       PetscCall(PDModelRestoreLevels(m));
       if (m->linear || dl * 0.5 < sc->dlambda_min) {
         rec->converged = PETSC_FALSE;
-        PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g (%s); increment %g at its floor", (double)lam, res.why, (double)dl));
+        PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g (%s); increment %g at its floor", (double)lam,
+                                res.why, (double)dl));
         break;
       }
       dl *= 0.5;
@@ -166,7 +163,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec)
     /* easy increments without bond events grow the next one */
     if (res.stages == 0 && res.its <= 3) dl = PetscMin(2 * dl, sc->dlambda_max);
   }
-  if (!rec->converged && rec->steps > 0 && (!rec->nfield_steps || rec->field_steps[rec->nfield_steps - 1] != rec->steps)) PetscCall(PDFieldsWrite(m, rec, rec->steps, u_n));
+  if (!rec->converged && rec->steps > 0 && (!rec->nfield_steps || rec->field_steps[rec->nfield_steps - 1] != rec->steps))
+    PetscCall(PDFieldsWrite(m, rec, rec->steps, u_n));
   {
     MatInfo  info;
     KSP      ksp;
