@@ -38,7 +38,7 @@ typedef struct {
 PetscErrorCode PDLatticeCreate(MPI_Comm, const PDScene *, PDLattice *);
 PetscErrorCode PDLatticeDestroy(PDLattice *);
 PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *, PetscInt bs, Vec *);
-PetscInt       PDLatticeNearestNode(const PDLattice *, const PetscReal p[3]);
+void           PDLatticeInterpolation(const PDLattice *, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n);
 PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PetscBool keep_lambda, PDBonds *);
 /* Global id of a bond (same on every rank): lower node id times N plus the higher one. */
 PetscInt64 PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);

@@ -81,13 +81,26 @@ PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *lat, PetscInt bs, Vec *v
   PetscFunctionReturn(0);
 }
 
-/* Nearest lattice node to a point; ties go to the lower index so every rank agrees. */
-PetscInt PDLatticeNearestNode(const PDLattice *lat, const PetscReal p[3]) {
-  PetscInt idx[3] = {0, 0, 0};
+/* Nodes and weights that interpolate a nodal field linearly at p (extrapolating within the outer half
+   cell); the same on every rank. */
+void PDLatticeInterpolation(const PDLattice *lat, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n) {
+  PetscInt  i0[3] = {0, 0, 0}, m[3] = {1, 1, 1};
+  PetscReal t[3] = {0, 0, 0};
+
   for (PetscInt a = 0; a < lat->dim; a++) {
     const PetscReal f = (p[a] - lat->origin[a]) / lat->dx;
-    idx[a]            = (PetscInt)PetscCeilReal(f - 0.5 - 1e-9);
-    idx[a]            = PetscMin(PetscMax(idx[a], 0), lat->n[a] - 1);
+    if (lat->n[a] == 1) continue;
+    i0[a] = PetscMin(PetscMax((PetscInt)PetscFloorReal(f + 1e-12), 0), lat->n[a] - 2);
+    t[a]  = f - i0[a];
+    if (PetscAbsReal(t[a]) < 1e-12) t[a] = 0;
+    m[a] = t[a] == 0 ? 1 : 2; /* on a node layer: one layer is enough */
   }
-  return (idx[0] * lat->n[1] + idx[1]) * lat->n[2] + idx[2];
+  *n = 0;
+  for (PetscInt i = 0; i < m[0]; i++)
+    for (PetscInt j = 0; j < m[1]; j++)
+      for (PetscInt k = 0; k < m[2]; k++) {
+        gid[*n] = ((i0[0] + i) * lat->n[1] + i0[1] + j) * lat->n[2] + i0[2] + k;
+        w[*n]   = (i ? t[0] : 1 - t[0]) * (j ? t[1] : 1 - t[1]) * (k ? t[2] : 1 - t[2]);
+        (*n)++;
+      }
 }

@@ -176,23 +176,27 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   PetscCall(VecRestoreArray(m->load_pattern, &lp));
   PetscCall(VecRestoreArray(m->disp_pattern, &dp));
   if (sc->has_cmod) {
-    const PetscInt g1 = PDLatticeNearestNode(lat, &sc->cmod[0]), g2 = PDLatticeNearestNode(lat, &sc->cmod[3]);
-    PetscReal      e[3] = {0, 0, 0}, len = 0;
-    PetscScalar    v[3];
-    PetscCheck(g1 != g2, lat->comm, PETSC_ERR_USER_INPUT, "Option -pd_cmod_points: both points fall on the same node");
-    /* gauge direction from the nodes' positions, computed from lattice indices on every rank */
+    /* The gauge reads the displacement at its two points by (tri)linear interpolation of the lattice,
+       extrapolated to points within dx/2 of the surface: the experiment's gauge sits on the face,
+       half a cell outside the nearest nodes. The opening is the difference along the gauge line. */
+    PetscReal e[3] = {0, 0, 0}, len = 0;
     for (PetscInt a = 0; a < lat->dim; a++) {
-      const PetscInt  stride[3] = {lat->n[1] * lat->n[2], lat->n[2], 1};
-      const PetscReal i1 = (PetscReal)((g1 / stride[a]) % lat->n[a]), i2 = (PetscReal)((g2 / stride[a]) % lat->n[a]);
-      e[a] = (i2 - i1) * lat->dx;
+      e[a] = sc->cmod[3 + a] - sc->cmod[a];
       len += e[a] * e[a];
     }
-    for (PetscInt a = 0; a < bs; a++) v[a] = e[a] / PetscSqrtReal(len);
-    if (g2 >= lat->gid_start && g2 < lat->gid_start + lat->nowned)
-      PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g2, v, INSERT_VALUES));
-    for (PetscInt a = 0; a < bs; a++) v[a] = -v[a];
-    if (g1 >= lat->gid_start && g1 < lat->gid_start + lat->nowned)
-      PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &g1, v, INSERT_VALUES));
+    PetscCheck(len > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option -pd_cmod_points: the two points coincide");
+    for (PetscInt a = 0; a < 3; a++) e[a] /= PetscSqrtReal(len);
+    for (PetscInt p = 0; p < 2; p++) {
+      PetscInt  gid[8], nw;
+      PetscReal w[8];
+      PDLatticeInterpolation(lat, &sc->cmod[3 * p], gid, w, &nw);
+      for (PetscInt k = 0; k < nw; k++) {
+        PetscScalar v[3];
+        if (gid[k] < lat->gid_start || gid[k] >= lat->gid_start + lat->nowned) continue;
+        for (PetscInt a = 0; a < bs; a++) v[a] = (p ? 1 : -1) * w[k] * e[a];
+        PetscCall(VecSetValuesBlocked(m->cmod_pattern, 1, &gid[k], v, ADD_VALUES));
+      }
+    }
     PetscCall(VecAssemblyBegin(m->cmod_pattern));
     PetscCall(VecAssemblyEnd(m->cmod_pattern));
   }

@@ -393,7 +393,7 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
     PetscReal pts[6] = {0, 0, 0, 0, 0, 0};
     n                = 2 * sc->dim;
     PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_cmod_points",
-                                "CMOD gauge: two points; opening measured along the line joining their nearest nodes", pts, &n,
+                                "CMOD gauge: two points; opening along their line, displacements interpolated from the lattice", pts, &n,
                                 &sc->has_cmod));
     if (sc->has_cmod) {
       PetscCheck(n == 2 * sc->dim, comm, PETSC_ERR_USER_INPUT,
