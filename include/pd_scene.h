@@ -102,4 +102,7 @@ typedef struct {
 
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);
 PetscErrorCode PDSceneView(const PDScene *, PetscViewer);
-PetscBool      PDGeometryContains(const PDGeometry *, const PetscReal x[3], PetscReal dx, PetscInt dim);
+/* Whether a region holds the node at x. A box with zero extent along an axis selects one layer of nodes:
+   the nearest to its plane; a plane halfway between two layers takes the upper one, except on the
+   domain's upper face, where it takes the layer below. */
+PetscBool PDGeometryContains(const PDGeometry *, const PetscReal x[3], const PDScene *);

@@ -32,20 +32,31 @@ int main(int argc, char **argv) {
         PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d), 0);
 
   {
-    /* a box flat in x selects the nodes within dx/2 of its plane; a solid box its interior */
+    /* a box flat in x selects one layer: the nearest, the upper one at a tie, the lower one on the
+       domain's upper face */
+    PDScene    sc2;
     PDGeometry g     = {PD_SHAPE_BOX, {0.025, 0, 0, 0.025, 0.05, 0}, 0, {0, 0, 0}, 0};
-    PetscReal  in[3] = {0.0275, 0.01, 0.0025}, edge[3] = {0.0225, 0.01, 0.0025}, out[3] = {0.0325, 0.01, 0.0025},
-              up[3] = {0.0275, 0.01, 0.0075};
-    Check(PDGeometryContains(&g, in, dx, 3), "flat box holds node dx/2 to the right", 1, 1);
-    Check(PDGeometryContains(&g, edge, dx, 3), "flat box holds node dx/2 to the left", 1, 1);
-    Check(!PDGeometryContains(&g, out, dx, 3), "flat box drops node 3dx/2 away", 0, 0);
-    Check(!PDGeometryContains(&g, up, dx, 3), "flat box drops the second layer up", 0, 0);
+    PDGeometry t     = {PD_SHAPE_BOX, {0.0875, 0, 0.05, 0.0875, 0.05, 0.05}, 0, {0, 0, 0}, 0};
+    PetscReal  up[3] = {0.0275, 0.01, 0.0025}, lo[3] = {0.0225, 0.01, 0.0025}, far[3] = {0.0325, 0.01, 0.0025},
+              second[3] = {0.0275, 0.01, 0.0075};
+    PetscReal top[3] = {0.0875, 0.01, 0.0475}, below[3] = {0.0875, 0.01, 0.0425};
+    PetscCall(PetscMemzero(&sc2, sizeof sc2));
+    sc2.dx           = dx;
+    sc2.dim          = 3;
+    PetscReal dom[6] = {0, 0, 0, 0.175, 0.05, 0.05};
+    PetscCall(PetscArraycpy(sc2.domain, dom, 6));
+    Check(PDGeometryContains(&g, up, &sc2), "plane between layers: the upper layer is in", 1, 1);
+    Check(!PDGeometryContains(&g, lo, &sc2), "plane between layers: the lower layer is out (no clamp)", 0, 0);
+    Check(!PDGeometryContains(&g, far, &sc2), "flat box drops a node 3dx/2 away", 0, 0);
+    Check(!PDGeometryContains(&g, second, &sc2), "bottom plane z = 0 holds only the first layer", 0, 0);
+    Check(PDGeometryContains(&t, top, &sc2), "plane on the upper face holds the top layer", 1, 1);
+    Check(!PDGeometryContains(&t, below, &sc2), "plane on the upper face drops the layer below it", 0, 0);
   }
   {
     PDGeometry c    = {PD_SHAPE_CYLINDER, {0, 0, 0, 0, 0, 0}, 1, {0.1, 0, 0.05}, 0.01};
     PetscReal  a[3] = {0.105, 3.0, 0.055}, b[3] = {0.115, 0.0, 0.05};
-    Check(PDGeometryContains(&c, a, dx, 3), "cylinder along y holds a point at r = 7 mm", 1, 1);
-    Check(!PDGeometryContains(&c, b, dx, 3), "cylinder along y drops a point at r = 15 mm", 0, 0);
+    Check(PDGeometryContains(&c, a, &sc), "cylinder along y holds a point at r = 7 mm", 1, 1);
+    Check(!PDGeometryContains(&c, b, &sc), "cylinder along y drops a point at r = 15 mm", 0, 0);
   }
   {
     const int rc = CheckSummary();

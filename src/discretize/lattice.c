@@ -60,7 +60,7 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
     NodePosition(lat, lat->gid[l], &lat->x[3 * l]);
     lat->material[l] = 0;
     for (PetscInt m = sc->nmaterials - 1; m > 0; m--)
-      if (PDGeometryContains(&sc->material[m].where, &lat->x[3 * l], sc->dx, sc->dim)) {
+      if (PDGeometryContains(&sc->material[m].where, &lat->x[3 * l], sc)) {
         lat->material[l] = m;
         break;
       }

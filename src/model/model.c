@@ -44,7 +44,7 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
   for (PetscInt r = 0; r < sc->nregions; r++) {
     const PDRegion *reg = &sc->region[r];
     for (PetscInt i = 0; i < lat->nowned; i++)
-      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc->dx, sc->dim)) count[r]++;
+      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc)) count[r]++;
   }
   PetscCall(MPIU_Allreduce(count, gcount, PD_MAX_REGIONS, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt r = 0; r < sc->nregions; r++)
@@ -54,7 +54,7 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
     const PDRegion *reg = &sc->region[r];
     if (reg->kind == PD_REGION_MONITOR) continue;
     for (PetscInt i = 0; i < lat->nowned; i++) {
-      if (!PDGeometryContains(&reg->where, &lat->x[3 * i], sc->dx, sc->dim)) continue;
+      if (!PDGeometryContains(&reg->where, &lat->x[3 * i], sc)) continue;
       for (PetscInt a = 0; a < bs; a++) {
         const PetscInt k = bs * i + a;
         if (reg->kind == PD_REGION_FORCE) {
@@ -80,7 +80,7 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
     const PDRegion *reg = &sc->region[r];
     if (reg->kind != PD_REGION_FORCE) continue;
     for (PetscInt i = 0; i < lat->nowned; i++)
-      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc->dx, sc->dim))
+      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc))
         for (PetscInt a = 0; a < bs; a++) {
           const PetscInt k = bs * i + a;
           if (reg->vector[a] != 0 && owner[k] > r && owner[k] * PD_MAX_REGIONS + r < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
@@ -165,13 +165,13 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   PetscCall(VecGetArray(m->load_pattern, &lp));
   PetscCall(VecGetArray(m->disp_pattern, &dp));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    if (PDGeometryContains(&load->where, &lat->x[3 * i], sc->dx, sc->dim))
+    if (PDGeometryContains(&load->where, &lat->x[3 * i], sc))
       for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[a];
-    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc->dx, sc->dim)) n++;
+    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc)) n++;
   }
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt i = 0; i < lat->nowned; i++)
-    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc->dx, sc->dim))
+    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc))
       for (PetscInt a = 0; a < bs; a++) dp[bs * i + a] = dir[a] / gn;
   PetscCall(VecRestoreArray(m->load_pattern, &lp));
   PetscCall(VecRestoreArray(m->disp_pattern, &dp));
