@@ -11,6 +11,24 @@ static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v)
   PetscFunctionReturn(0);
 }
 
+/* Owned and ghost values of a ghosted vector whose owned part is set. */
+static PetscErrorCode GhostedValues(Vec g, PetscReal *out) {
+  Vec                loc;
+  const PetscScalar *a;
+  PetscInt           n;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGhostUpdateBegin(g, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(g, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(g, &loc));
+  PetscCall(VecGetLocalSize(loc, &n));
+  PetscCall(VecGetArrayRead(loc, &a));
+  for (PetscInt k = 0; k < n; k++) out[k] = PetscRealPart(a[k]);
+  PetscCall(VecRestoreArrayRead(loc, &a));
+  PetscCall(VecGhostRestoreLocalForm(g, &loc));
+  PetscFunctionReturn(0);
+}
+
 /* Diagonal of a node's 3x3 stiffness block, sum over its bonds of (c/|xi|) e e^T. */
 static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3]) {
   const PDBonds   *bd  = m->bonds;
@@ -115,30 +133,12 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
   }
   PetscCall(VecRestoreArray(fixl, &fx));
   PetscCall(VecCopy(fixl, m->fixed)); /* same layout of owned entries */
-  PetscCall(VecGhostUpdateBegin(fixl, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(fixl, INSERT_VALUES, SCATTER_FORWARD));
-  {
-    Vec loc;
-    PetscCall(VecGhostGetLocalForm(fixl, &loc));
-    PetscCall(VecGetArray(loc, &fx));
-    PetscCall(PetscMalloc1(bs * lat->nlocal, &m->fixed_local));
-    for (PetscInt k = 0; k < bs * lat->nlocal; k++) m->fixed_local[k] = PetscRealPart(fx[k]) != 0 ? PETSC_TRUE : PETSC_FALSE;
-    PetscCall(VecRestoreArray(loc, &fx));
-    PetscCall(VecGhostRestoreLocalForm(fixl, &loc));
-  }
-  /* prescribed values of local and ghost dofs, for the residual's lifting of the constraints */
+  /* flags, and the prescribed values for the residual's lifting, travel to the ghosts */
+  PetscCall(PetscMalloc2(bs * lat->nlocal, &m->fixed_local, bs * lat->nlocal, &m->uref_local));
+  PetscCall(GhostedValues(fixl, m->uref_local)); /* flags first, through the same buffer */
+  for (PetscInt k = 0; k < bs * lat->nlocal; k++) m->fixed_local[k] = m->uref_local[k] != 0 ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(VecCopy(m->u_ref, fixl));
-  PetscCall(VecGhostUpdateBegin(fixl, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(fixl, INSERT_VALUES, SCATTER_FORWARD));
-  {
-    Vec loc;
-    PetscCall(VecGhostGetLocalForm(fixl, &loc));
-    PetscCall(VecGetArray(loc, &fx));
-    PetscCall(PetscMalloc1(bs * lat->nlocal, &m->uref_local));
-    for (PetscInt k = 0; k < bs * lat->nlocal; k++) m->uref_local[k] = PetscRealPart(fx[k]);
-    PetscCall(VecRestoreArray(loc, &fx));
-    PetscCall(VecGhostRestoreLocalForm(fixl, &loc));
-  }
+  PetscCall(GhostedValues(fixl, m->uref_local));
   PetscCall(VecDestroy(&fixl));
   PetscCall(MPIU_Allreduce(&nfix, &m->nconstrained, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&niso, &m->nisolated, 1, MPIU_INT, MPI_SUM, lat->comm));
@@ -287,8 +287,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->load_pattern));
   PetscCall(VecDestroy(&m->disp_pattern));
   PetscCall(VecDestroy(&m->cmod_pattern));
-  PetscCall(PetscFree(m->fixed_local));
-  PetscCall(PetscFree(m->uref_local));
+  PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
   PetscCall(PetscFree3(m->kappa, m->level, m->level_n));
   PetscCall(PetscFree(m->thr));
