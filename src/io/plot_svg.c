@@ -75,6 +75,7 @@ PetscErrorCode PDCurvePlotWrite(MPI_Comm comm, const PDScene *sc, const PDRecord
     }
     if (xmax <= 0) xmax = 1;
     if (ymax <= ymin) ymax = ymin + 1;
+    ymax += 0.05 * (ymax - ymin); /* headroom above the peak */
     sx = (W - ML - MR) / xmax;
     sy = (H - MT - MB) / (ymax - ymin);
     PetscCall(PetscSNPrintf(path, sizeof path, "%s/curve.svg.tmp", rec->dir));
