@@ -1,0 +1,45 @@
+"""Softening regression tests on the half-notched Gregoire beam at dx = 10 mm (coarse enough for CI).
+Usage: test_softening.py CASE"""
+import sys
+
+from pdtest import check, rel, run
+
+HN = ["-pd_law", "nonlinear", "-pd_ft", "3.9e6", "-pd_Gf", "143.2", "-pd_region2_displacement", "0,0,-5e-4",
+      "-pd_steps", "200", "-pd_stop_cmod", "2e-4", "-pd_dx", "0.01"]
+
+
+def peak(r):
+    return max(row["load_N"] for row in r.curve)
+
+
+def mpi():
+    # Solved tightly so that different block-Jacobi preconditioners on 1 and 2 ranks do not show.
+    one = run("gregoire_d50_hn", *HN, "-ksp_rtol", "1e-10")
+    two = run("gregoire_d50_hn", *HN, "-ksp_rtol", "1e-10", ranks=2)
+    check(len(one.curve) == len(two.curve), "same increments on 1 and 2 ranks (%d, %d)" % (len(one.curve), len(two.curve)))
+    d = rel(peak(two), peak(one))
+    check(d < 1e-6, "peak load 1 rank %.9f N, 2 ranks %.9f N, relative difference %.2e < 1e-6" % (peak(one), peak(two), d))
+    b1 = [row["broken_bonds"] for row in one.curve]
+    check(b1 == [row["broken_bonds"] for row in two.curve], "broken bonds per step identical")
+
+
+def limiter():
+    peaks = {}
+    for n in (1, 10, 100, 0):
+        r = run("gregoire_d50_hn", *HN, "-pd_limiter_max_bonds", n)
+        s = r.summary
+        peaks[n] = peak(r)
+        check(s["converged"] and r.curve[-1]["cmod_m"] >= 2e-4, "N = %d: traced to CMOD 0.2 mm (%s)" % (n, s["status"]))
+        if n:
+            check(s["max_bonds_per_iteration"] <= n, "N = %d: at most %d events per iteration (%d)" % (n, n, s["max_bonds_per_iteration"]))
+        else:
+            print("     no cap: largest number of events in one iteration %d" % s["max_bonds_per_iteration"])
+        b = [row["broken_bonds"] for row in r.curve]
+        check(all(x <= y for x, y in zip(b, b[1:])), "N = %d: broken bonds never decrease (%d at the end)" % (n, b[-1]))
+        check(r.curve[-1]["load_N"] < 0.4 * peaks[n], "N = %d: load at CMOD 0.2 mm %.1f N below 40 %% of peak %.1f N" % (n, r.curve[-1]["load_N"], peaks[n]))
+    spread = (max(peaks.values()) - min(peaks.values())) / min(peaks.values())
+    check(spread < 0.02, "peak loads with N = 1, 10, 100 and no cap within 2 %% (spread %.2e)" % spread)
+
+
+if __name__ == "__main__":
+    {"mpi": mpi, "limiter": limiter}[sys.argv[1]]()
