@@ -98,6 +98,7 @@ typedef struct {
   PetscInt     steps;   /* load steps */
   PetscInt     fields_every;
   PetscBool    progress;
+  PetscBool    dry_run; /* build the scene and report it, do not solve */
 } PDScene;
 
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);

@@ -11,7 +11,7 @@ static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, P
 
   PetscFunctionBeginUser;
   PetscCall(PDSceneCreateFromOptions(comm, sc));
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-pd_dry_run", dry_run, NULL));
+  *dry_run = sc->dry_run;
   PetscCall(PDRecordCreate(comm, sc, rec));
   PetscCall(PetscTime(&t0));
   PetscCall(PDLatticeCreate(comm, sc, lat));

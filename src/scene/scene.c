@@ -455,6 +455,8 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                            sc->data_file, sizeof sc->data_file, NULL));
   sc->progress = PETSC_FALSE;
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_progress", "One-line progress display on stderr", &sc->progress, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_dry_run", "Build the scene and write summary.json (counts, law, memory estimate) without solving",
+                         &sc->dry_run, NULL));
   PetscOptionsEnd();
   if (sc->data_file[0]) {
     PetscBool exists;
