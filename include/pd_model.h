@@ -23,6 +23,7 @@ typedef struct {
   unsigned char *level;                         /* PDBondLevel the limiter allows the bond to reach */
   unsigned char *level_n;                       /* levels at the last accepted step, to restart a step */
   PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscReal     *stretch;                       /* per-bond scratch of the limiter and the history update */
   PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
   PetscInt       nregularised, max_regularised; /* free dofs left without stiffness by damage */
   Vec            f_ref;                         /* external force at load factor 1 (global) */
@@ -33,7 +34,6 @@ typedef struct {
   Vec            load_pattern;                  /* unit direction on the load region's nodes */
   Vec            disp_pattern;                  /* unit direction / count on the displacement region's nodes */
   Vec            cmod_pattern;                  /* -e on gauge point 1, +e on gauge point 2 */
-  PetscReal      load_sign_force;               /* 1 when the load region applies a force (curve load = lambda |F|) */
   PetscReal      force_magnitude;
   PetscInt       nconstrained;  /* global constrained dofs */
   PetscInt       nisolated;     /* global nodes without any bond, pinned */
@@ -45,6 +45,7 @@ typedef struct {
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
+PetscInt       PDModelEffects(const PDModel *, const char *names[4]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
 PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);

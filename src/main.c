@@ -59,7 +59,13 @@ int main(int argc, char **argv) {
                         "  %" PetscInt_FMT " nodes, %" PetscInt_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT
                         " constrained dofs, set-up %.3f s\n",
                         lat.nglobal, bonds.nbonds_global, bonds.ncut, model.nconstrained, (double)rec.t_setup));
-  PetscCall(PetscPrintf(comm, "  effects: elasticity%s\n", sc.kinematics == PD_KINEMATICS_FINITE ? ", geometric_nonlinearity" : ""));
+  {
+    const char    *names[4];
+    const PetscInt n = PDModelEffects(&model, names);
+    PetscCall(PetscPrintf(comm, "  effects:"));
+    for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(comm, "%s %s", k ? "," : "", names[k]));
+    PetscCall(PetscPrintf(comm, "\n"));
+  }
   if (model.nzero_dofs)
     PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " dofs without stiffness pinned (%" PetscInt_FMT " nodes without any bond)\n",
                           model.nzero_dofs, model.nisolated));

@@ -16,16 +16,14 @@ static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *total) {
 
 /* Physical effects the scene calls for; discretisation corrections are listed apart. */
 static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
-  const PDScene *sc   = m->scene;
-  PetscBool      soft = PETSC_FALSE, brk = PETSC_FALSE;
+  const PDScene *sc = m->scene;
+  const char    *names[4];
+  const PetscInt n = PDModelEffects(m, names);
 
   PetscFunctionBeginUser;
-  for (PetscInt k = 0; k < sc->nmaterials; k++) {
-    if (sc->material[k].law != PD_LAW_ELASTIC) brk = PETSC_TRUE;
-    if (sc->material[k].law != PD_LAW_ELASTIC && sc->material[k].law != PD_LAW_LINEAR) soft = PETSC_TRUE;
-  }
-  PetscCall(PetscFPrintf(comm, fp, "  \"effects\": [\"elasticity\"%s%s%s],\n", soft ? ", \"softening_damage\"" : "",
-                         brk ? ", \"bond_breaking\"" : "", sc->kinematics == PD_KINEMATICS_FINITE ? ", \"geometric_nonlinearity\"" : ""));
+  PetscCall(PetscFPrintf(comm, fp, "  \"effects\": ["));
+  for (PetscInt k = 0; k < n; k++) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", k ? ", " : "", names[k]));
+  PetscCall(PetscFPrintf(comm, fp, "],\n"));
   {
     const PDLaw *law = &m->law[0];
     PetscCall(PetscFPrintf(comm, fp,

@@ -160,7 +160,6 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   for (PetscInt a = 0; a < 3; a++) norm += load->vector[a] * load->vector[a];
   norm = PetscSqrtReal(norm);
   for (PetscInt a = 0; a < 3; a++) dir[a] = load->vector[a] / norm;
-  m->load_sign_force = load->kind == PD_REGION_FORCE ? 1 : 0;
   m->force_magnitude = norm;
   PetscCall(VecGetArray(m->load_pattern, &lp));
   PetscCall(VecGetArray(m->disp_pattern, &dp));
@@ -262,8 +261,8 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->history_bytes = 0;
   if (m->softening) {
     const PetscInt nb = PetscMax(1, bd->nbonds);
-    PetscCall(PetscCalloc3(nb, &m->kappa, nb, &m->level, nb, &m->level_n));
-    m->history_bytes = (PetscInt64)bd->nbonds * (sizeof(PetscReal) + 2);
+    PetscCall(PetscCalloc4(nb, &m->kappa, nb, &m->level, nb, &m->level_n, nb, &m->stretch));
+    m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
     if (bd->lambda) {
       PetscCall(PetscMalloc1(nb, &m->thr));
       for (PetscInt e = 0; e < bd->nbonds; e++) PDLawBondThresholds(&m->law[bd->material[e]], bd->lambda[e], &m->thr[e]);
@@ -289,7 +288,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->cmod_pattern));
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
-  PetscCall(PetscFree3(m->kappa, m->level, m->level_n));
+  PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->thr));
   PetscFunctionReturn(0);
 }
@@ -418,7 +417,7 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
   PetscScalar v;
 
   PetscFunctionBeginUser;
-  if (m->load_sign_force)
+  if (m->scene->region[m->scene->load_region].kind == PD_REGION_FORCE)
     *load = m->lambda * m->force_magnitude;
   else {
     Vec F;
@@ -436,4 +435,21 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
     *cmod = PetscRealPart(v);
   }
   PetscFunctionReturn(0);
+}
+
+/* Physical effects the scene calls for (discretisation corrections are not effects). */
+PetscInt PDModelEffects(const PDModel *m, const char *names[4]) {
+  const PDScene *sc   = m->scene;
+  PetscBool      soft = PETSC_FALSE, brk = PETSC_FALSE;
+  PetscInt       n = 0;
+
+  for (PetscInt k = 0; k < sc->nmaterials; k++) {
+    if (sc->material[k].law != PD_LAW_ELASTIC) brk = PETSC_TRUE;
+    if (sc->material[k].law != PD_LAW_ELASTIC && sc->material[k].law != PD_LAW_LINEAR) soft = PETSC_TRUE;
+  }
+  names[n++] = "elasticity";
+  if (soft) names[n++] = "softening_damage";
+  if (brk) names[n++] = "bond_breaking";
+  if (sc->kinematics == PD_KINEMATICS_FINITE) names[n++] = "geometric_nonlinearity";
+  return n;
 }

@@ -88,8 +88,7 @@ static PetscErrorCode ReadMaterial(PetscOptionItems *PetscOptionsObject, PDScene
     m->where.shape = PD_SHAPE_BOX;
     PetscCall(PetscArraycpy(m->where.box, sc->domain, 6));
   } else {
-    PetscCall(PetscSNPrintf(m->option, sizeof m->option, "-pd_material%" PetscInt_FMT, k));
-    *m = sc->material[0];
+    *m = sc->material[0]; /* a further material starts from the base one */
     PetscCall(PetscSNPrintf(m->option, sizeof m->option, "-pd_material%" PetscInt_FMT, k));
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", m->option));
     PetscCall(
@@ -455,8 +454,8 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                            sc->data_file, sizeof sc->data_file, NULL));
   sc->progress = PETSC_FALSE;
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_progress", "One-line progress display on stderr", &sc->progress, NULL));
-  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_dry_run", "Build the scene and write summary.json (counts, law, memory estimate) without solving",
-                         &sc->dry_run, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_dry_run",
+                         "Build the scene and write summary.json (counts, law, memory estimate) without solving", &sc->dry_run, NULL));
   PetscOptionsEnd();
   if (sc->data_file[0]) {
     PetscBool exists;

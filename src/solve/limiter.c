@@ -56,15 +56,17 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscFunctionBeginUser;
   *ncandidates = *granted = 0;
   if (!m->softening) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &s));
+  s = m->stretch;
   PetscCall(StretchesAt(m, u, s));
-  for (PetscInt e = 0; e < bd->nbonds; e++)
-    if (s[e] >= Threshold(m, e)) nlocal_cand++;
+  /* criticality s / threshold, >= 1 for a held bond, kept in place of the stretch */
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    s[e] /= Threshold(m, e);
+    if (s[e] >= 1) nlocal_cand++;
+  }
   PetscCall(PetscMalloc1(PetscMax(1, nlocal_cand), &mine));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscReal t = Threshold(m, e);
-    if (s[e] >= t && PDBondCountedHere(lat, bd, e)) {
-      mine[nmine].crit = s[e] / t;
+    if (s[e] >= 1 && PDBondCountedHere(lat, bd, e)) {
+      mine[nmine].crit = s[e];
       mine[nmine].id   = PDBondGlobalId(lat, bd, e);
       nmine++;
     }
@@ -72,13 +74,12 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscCall(MPIU_Allreduce(&nmine, ncandidates, 1, MPIU_INT, MPI_SUM, comm));
   if (*ncandidates == 0) {
     PetscCall(PetscFree(mine));
-    PetscCall(PetscFree(s));
     PetscFunctionReturn(0);
   }
   if (max_events == 0 || *ncandidates <= max_events) {
     /* every candidate goes: each rank decides its own copies alike, no exchange needed */
     for (PetscInt e = 0; e < bd->nbonds; e++)
-      if (s[e] >= Threshold(m, e)) m->level[e]++;
+      if (s[e] >= 1) m->level[e]++;
     *granted = *ncandidates;
   } else {
     /* each rank's best max_events cover the global best max_events */
@@ -98,7 +99,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     qsort(ids, (size_t)max_events, sizeof(PetscInt64), CompareIds);
     for (PetscInt e = 0; e < bd->nbonds; e++) {
       PetscInt64 id;
-      if (s[e] < Threshold(m, e)) continue;
+      if (s[e] < 1) continue;
       id = PDBondGlobalId(lat, bd, e);
       if (bsearch(&id, ids, (size_t)max_events, sizeof(PetscInt64), CompareIds)) m->level[e]++;
     }
@@ -107,7 +108,6 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     PetscCall(PetscFree2(counts, displs));
   }
   PetscCall(PetscFree(mine));
-  PetscCall(PetscFree(s));
   PetscFunctionReturn(0);
 }
 
@@ -118,7 +118,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
 
   PetscFunctionBeginUser;
   if (!m->softening) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &s));
+  s = m->stretch;
   PetscCall(StretchesAt(m, u, s));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw     *law = &m->law[bd->material[e]];
@@ -129,7 +129,6 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
     if (law->kind != PD_LAW_ELASTIC && m->kappa[e] >= t->sc && PDBondCountedHere(m->lat, bd, e)) broken++;
   }
   PetscCall(MPIU_Allreduce(&broken, &m->broken, 1, MPIU_INT, MPI_SUM, m->lat->comm));
-  PetscCall(PetscFree(s));
   PetscFunctionReturn(0);
 }
 

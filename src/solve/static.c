@@ -172,8 +172,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     if (stop) break;
     /* an increment that converged without trouble lets the next one grow back after cuts; easy ones
        (no bond events, few iterations) grow faster */
-    if (res.stages == 0 && res.its <= 3) dl = PetscMin(2 * dl, sc->dlambda_max);
-    else if (res.its <= 12) dl = PetscMin(1.25 * dl, sc->dlambda_max);
+    if (res.stages == 0 && res.its <= 3)
+      dl = PetscMin(2 * dl, sc->dlambda_max);
+    else if (res.its <= 12)
+      dl = PetscMin(1.25 * dl, sc->dlambda_max);
   }
   if (!rec->converged && rec->steps > 0 && (!rec->nfield_steps || rec->field_steps[rec->nfield_steps - 1] != rec->steps))
     PetscCall(PDFieldsWrite(m, rec, rec->steps, u_n));
