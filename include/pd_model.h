@@ -25,6 +25,7 @@ typedef struct {
   PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
   PetscReal     *stretch;                       /* per-bond scratch of the limiter and the history update */
   PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
+  PetscInt       softening_bonds;               /* bonds on the softening branch, not broken (global) */
   PetscInt       nregularised, max_regularised; /* free dofs left without stiffness by damage */
   Vec            f_ref;                         /* external force at load factor 1 (global) */
   Vec            u_ref;                         /* prescribed displacement at load factor 1 (global, zero on free dofs) */

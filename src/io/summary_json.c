@@ -92,9 +92,9 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n",
                          rec->steps, rec->newton_its, rec->ksp_its));
   PetscCall(PetscFPrintf(comm, fp,
-                         "  \"broken_bonds\": %" PetscInt_FMT ",\n  \"max_bonds_per_iteration\": %" PetscInt_FMT
-                         ",\n  \"max_regularised_dofs\": %" PetscInt_FMT ",\n",
-                         m->broken, rec->max_events_per_its, m->max_regularised));
+                         "  \"broken_bonds\": %" PetscInt_FMT ",\n  \"softening_bonds\": %" PetscInt_FMT
+                         ",\n  \"max_bonds_per_iteration\": %" PetscInt_FMT ",\n  \"max_regularised_dofs\": %" PetscInt_FMT ",\n",
+                         m->broken, m->softening_bonds, rec->max_events_per_its, m->max_regularised));
   PetscCall(PetscFPrintf(comm, fp, "  \"peak_load_N\": %s,\n  \"disp_at_peak_m\": %s,\n  \"final_load_N\": %s,\n", peak, dpeak, fin));
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
   PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n",

@@ -114,7 +114,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
 PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   const PDBonds *bd = m->bonds;
   PetscReal     *s;
-  PetscInt       broken = 0;
+  PetscInt       count[2] = {0, 0}, total[2]; /* broken, softening */
 
   PetscFunctionBeginUser;
   if (!m->softening) PetscFunctionReturn(0);
@@ -126,9 +126,15 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
     const PetscReal  cap = Threshold(m, e);
     m->kappa[e]          = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
     m->level_n[e]        = m->level[e];
-    if (law->kind != PD_LAW_ELASTIC && m->kappa[e] >= t->sc && PDBondCountedHere(m->lat, bd, e)) broken++;
+    if (law->kind == PD_LAW_ELASTIC || !PDBondCountedHere(m->lat, bd, e)) continue;
+    if (m->kappa[e] >= t->sc)
+      count[0]++;
+    else if (law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0)
+      count[1]++;
   }
-  PetscCall(MPIU_Allreduce(&broken, &m->broken, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  PetscCall(MPIU_Allreduce(count, total, 2, MPIU_INT, MPI_SUM, m->lat->comm));
+  m->broken          = total[0];
+  m->softening_bonds = total[1];
   PetscFunctionReturn(0);
 }
 
