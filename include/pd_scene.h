@@ -77,6 +77,7 @@ typedef struct {
   PetscReal    dx, horizon_ratio;
   PDInfluence  influence;
   PetscBool    partial_volume, surface_correction;
+  PetscBool    notch_surface; /* notch faces count as free surfaces in the surface correction */
   PDKinematics kinematics;
   PDStretch    stretch;
   PetscBool    sc_correction; /* per-bond critical stretch from lambda_ij c */

@@ -4,8 +4,7 @@ import sys
 
 from pdtest import check, rel, run
 
-HN = ["-pd_law", "nonlinear", "-pd_ft", "3.9e6", "-pd_Gf", "143.2", "-pd_region2_displacement", "0,0,-5e-4",
-      "-pd_steps", "200", "-pd_stop_cmod", "2e-4", "-pd_dx", "0.01"]
+HN = ["-pd_dx", "0.01"]
 
 
 def peak(r):
@@ -14,8 +13,12 @@ def peak(r):
 
 def mpi():
     # Solved tightly so that different block-Jacobi preconditioners on 1 and 2 ranks do not show.
-    one = run("gregoire_d50_hn", *HN, "-ksp_rtol", "1e-10")
-    two = run("gregoire_d50_hn", *HN, "-ksp_rtol", "1e-10", ranks=2)
+    # Eisenstat-Walker is off: it sets each linear tolerance from the residual history, so the two
+    # preconditioners give different Newton counts and the increments then grow differently (measured:
+    # same peak to 1.6e-9 but 64 against 63 increments).
+    tight = ["-ksp_rtol", "1e-10", "-snes_ksp_ew", "0"]
+    one = run("gregoire_d50_hn", *HN, *tight)
+    two = run("gregoire_d50_hn", *HN, *tight, ranks=2)
     check(len(one.curve) == len(two.curve), "same increments on 1 and 2 ranks (%d, %d)" % (len(one.curve), len(two.curve)))
     d = rel(peak(two), peak(one))
     check(d < 1e-6, "peak load 1 rank %.9f N, 2 ranks %.9f N, relative difference %.2e < 1e-6" % (peak(one), peak(two), d))

@@ -100,8 +100,9 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
   PetscFunctionReturn(0);
 }
 
-/* Neighbour search: for every owned node, every node within the horizon that no notch separates. */
-static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local) {
+/* Neighbour search: for every owned node, every node within the horizon that no notch separates.
+   cut_volume[i] collects the partial volumes of the owned node's neighbours behind a notch. */
+static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local, PetscReal *cut_volume) {
   CellList        cl;
   const PetscReal d2 = lat->horizon * lat->horizon * (1 + 1e-10), tol = 1e-9 * sc->dx;
   PetscInt        c[3], lo[3], hi[3];
@@ -131,6 +132,9 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
             if (r2 > d2) continue;
             for (PetscInt k = 0; k < sc->nnotches && !cut; k++) cut = NotchCuts(&sc->notch[k], xi, xj, sc->dim, tol);
             if (cut) {
+              const PetscReal vcut = PartialVolumeFactor(sc, PetscSqrtReal(r2), lat->horizon) * lat->cell_volume;
+              cut_volume[i] += vcut;
+              if (j < lat->nowned) cut_volume[j] += vcut; /* a pair with a ghost is seen by the ghost's owner too */
               if (lat->gid[i] < lat->gid[j]) (*ncut_local)++;
               continue;
             }
@@ -174,8 +178,13 @@ static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd) {
 }
 
 /* Volume-method surface correction (Eq. 4.11): V_i = sum_j beta_ij V_j over the family of i, shared with
-   neighbouring ranks through a ghosted vector, lambda_ij = 2 V0 / (V_i + V_j). */
-static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta, PetscBool keep) {
+   neighbouring ranks through a ghosted vector, lambda_ij = 2 V0 / (V_i + V_j). The correction makes up
+   for material missing beyond the body's faces. A notch is a cut through material that is there, so by
+   default the neighbours behind it still count in V_i (cut_volume); otherwise the bonds around the
+   notch tip are stiffened and strengthened by up to lambda, the spurious strengthening Hobbs Sec. 5.4.2
+   suspects near notches. -pd_sc_notch_surface treats the notch faces as free surfaces instead. */
+static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta,
+                                        const PetscReal *cut_volume, PetscBool keep) {
   Vec             vol, vloc;
   PetscScalar    *v;
   const PetscReal delta = lat->horizon;
@@ -186,7 +195,7 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   PetscCall(PDLatticeCreateGhostVec(lat, 1, &vol));
   PetscCall(VecGetArray(vol, &v));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    v[i] = 0;
+    v[i] = sc->notch_surface ? 0 : cut_volume[i];
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) v[i] += beta[bd->inc_bond[p]] * lat->cell_volume;
   }
   PetscCall(VecRestoreArray(vol, &v));
@@ -213,12 +222,13 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
 PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd) {
   PairList   pl = {NULL, NULL, 0, 0};
   PetscInt   ncut_local, nonce = 0;
-  PetscReal *beta;
+  PetscReal *beta, *cut_volume;
   PetscReal  c0[PD_MAX_MATERIALS];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(bd, sizeof *bd));
-  PetscCall(FindPairs(sc, lat, &pl, &ncut_local));
+  PetscCall(PetscCalloc1(PetscMax(1, lat->nowned), &cut_volume));
+  PetscCall(FindPairs(sc, lat, &pl, &ncut_local, cut_volume));
   bd->nbonds = pl.n;
   bd->a      = pl.a;
   bd->b      = pl.b;
@@ -243,8 +253,9 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   bd->lambda_min = bd->lambda_max = 1;
   keep_lambda                     = keep_lambda && sc->surface_correction;
   if (keep_lambda) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->lambda));
-  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, keep_lambda));
+  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, cut_volume, keep_lambda));
   PetscCall(PetscFree(beta));
+  PetscCall(PetscFree(cut_volume));
   PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscFunctionReturn(0);

@@ -34,8 +34,18 @@ static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
                            (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.sc), (double)law->ft, (double)law->Gf,
                            PDTangentNames[sc->tangent], sc->limiter_max));
   }
-  PetscCall(PetscFPrintf(comm, fp, "  \"corrections\": [%s%s%s],\n", sc->partial_volume ? "\"partial_volume\"" : "",
-                         sc->partial_volume && sc->surface_correction ? ", " : "", sc->surface_correction ? "\"surface_correction\"" : ""));
+  {
+    /* discretisation corrections in force; the critical-stretch one only where a law has a critical stretch */
+    const char *name[4];
+    PetscInt    n = 0;
+    if (sc->partial_volume) name[n++] = "partial_volume";
+    if (sc->surface_correction) name[n++] = "surface_correction";
+    if (sc->surface_correction && sc->notch_surface && sc->nnotches) name[n++] = "notch_faces_corrected";
+    if (sc->surface_correction && sc->sc_correction && m->softening) name[n++] = "critical_stretch";
+    PetscCall(PetscFPrintf(comm, fp, "  \"corrections\": ["));
+    for (PetscInt k = 0; k < n; k++) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", k ? ", " : "", name[k]));
+    PetscCall(PetscFPrintf(comm, fp, "],\n"));
+  }
   PetscFunctionReturn(0);
 }
 

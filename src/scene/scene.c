@@ -282,6 +282,7 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   sc->horizon_ratio      = PETSC_PI;
   sc->partial_volume     = PETSC_TRUE;
   sc->surface_correction = PETSC_TRUE;
+  sc->notch_surface      = PETSC_FALSE;
   sc->thickness          = 1.0;
   sc->steps              = 1;
   sc->fields_every       = 0;
@@ -338,6 +339,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscCall(
       PDOptionBool(PetscOptionsObject, "-pd_partial_volume", "PA-PDLAMMPS partial volumes at the horizon edge", &sc->partial_volume, NULL));
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_surface_correction", "Volume-method surface correction", &sc->surface_correction, NULL));
+  PetscCall(PDOptionBool(
+      PetscOptionsObject, "-pd_sc_notch_surface",
+      "Treat notch faces as free surfaces in the surface correction (default: a notch is a cut, its bonds count in the family volume)",
+      &sc->notch_surface, NULL));
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_kinematics", "Bond stretch: small (linearised) or finite (exact)", PDKinematicsNames, 2,
                          &kin, NULL));
   sc->kinematics = (PDKinematics)kin;
