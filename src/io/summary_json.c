@@ -110,11 +110,12 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n",
                          (double)rec->t_setup, (double)m->t_assembly, (double)rec->t_solve, (double)rec->t_output));
   {
-    /* estimate for -pd_dry_run: bond arrays, history, and the stiffness (block rows of 8-byte values
-       and 4-byte column indices; SBAIJ stores the upper half) */
-    const PetscReal nb = (PetscReal)m->bonds->nbonds_global, bs2 = (PetscReal)(m->bs * m->bs);
+    /* estimate for -pd_dry_run: bond arrays, history, the stiffness (block rows of 8-byte values and
+       4-byte column indices; SBAIJ stores the upper half) and, on softening scenes, the 60-vector
+       GMRES basis of the consistent tangent */
+    const PetscReal nb = (PetscReal)m->bonds->nbonds_global, bs2 = (PetscReal)(m->bs * m->bs), ndof = (PetscReal)(m->bs * m->lat->nglobal);
     const PetscReal est = nb * (2 * sizeof(PetscInt) + 2 * sizeof(PetscReal) + 2 * sizeof(PetscInt)) + (PetscReal)m->history_bytes +
-                          (nb + m->lat->nglobal) * (bs2 * 8 + 4);
+                          (nb + m->lat->nglobal) * (bs2 * 8 + 4) + (m->softening ? 61 * ndof * sizeof(PetscScalar) : 0);
     PetscCall(PetscFPrintf(comm, fp,
                            "  \"memory\": {\"history_bytes\": %" PetscInt64_FMT
                            ", \"matrix_nonzeros\": %.0f, \"estimated_bytes\": %.0f, \"peak_rss_bytes\": %.0f},\n",
