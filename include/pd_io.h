@@ -22,6 +22,10 @@ typedef struct {
   PetscReal   matrix_nonzeros; /* stored scalar entries of the stiffness */
   char        solver[128];     /* snes/ksp/pc types actually used */
   char        dir[PETSC_MAX_PATH_LEN];
+  /* explicit path */
+  PetscReal dt_stable, dt; /* stable estimate and step used (s) */
+  PetscInt  time_steps;
+  PetscReal ke_max; /* largest kinetic energy at a recorded step (J) */
 } PDRecord;
 
 PetscErrorCode PDRecordCreate(MPI_Comm, const PDScene *, PDRecord *);

@@ -24,6 +24,7 @@ typedef struct {
   unsigned char *level_n;                       /* levels at the last accepted step, to restart a step */
   PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
   PetscReal     *stretch;                       /* per-bond scratch of the limiter and the history update */
+  PetscBool      commit_history;                /* explicit path: every force evaluation raises kappa */
   PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
   PetscInt       softening_bonds;               /* bonds on the softening branch, not broken (global) */
   PetscInt       nregularised, max_regularised; /* free dofs left without stiffness by damage */
@@ -46,7 +47,7 @@ typedef struct {
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
-PetscInt       PDModelEffects(const PDModel *, const char *names[4]);
+PetscInt       PDModelEffects(const PDModel *, const char *names[5]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
 PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);
@@ -58,4 +59,5 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
+PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

@@ -100,6 +100,13 @@ typedef struct {
   PetscInt     fields_every;
   PetscBool    progress;
   PetscBool    dry_run; /* build the scene and report it, do not solve */
+  /* explicit path (-pd_mode explicit) */
+  PetscBool explicit_mode;
+  PetscReal ramp_time;  /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */
+  PetscReal hold_time;  /* time after the ramp, at lambda_max (s) */
+  PetscReal dt_safety;  /* fraction of the stable time step */
+  PetscReal damping;    /* local damping C (kg/(m^3 s)) */
+  PetscInt  out_stride; /* time steps between curve rows; 0: about 400 rows */
 } PDScene;
 
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);

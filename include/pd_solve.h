@@ -4,3 +4,4 @@
 #include "pd_io.h"
 
 PetscErrorCode PDStaticRun(PDModel *, PDRecord *);
+PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);

@@ -60,7 +60,7 @@ int main(int argc, char **argv) {
                         " constrained dofs, set-up %.3f s\n",
                         lat.nglobal, bonds.nbonds_global, bonds.ncut, model.nconstrained, (double)rec.t_setup));
   {
-    const char    *names[4];
+    const char    *names[5];
     const PetscInt n = PDModelEffects(&model, names);
     PetscCall(PetscPrintf(comm, "  effects:"));
     for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(comm, "%s %s", k ? "," : "", names[k]));
@@ -71,7 +71,7 @@ int main(int argc, char **argv) {
                           model.nzero_dofs, model.nisolated));
   PetscCall(PDOutputPrepare(comm, &sc, &rec));
   if (!dry_run)
-    PetscCall(PDStaticRun(&model, &rec));
+    PetscCall(sc.explicit_mode ? PDExplicitRun(&model, &rec) : PDStaticRun(&model, &rec));
   else
     PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));
   converged     = dry_run ? PETSC_TRUE : rec.converged;

@@ -27,6 +27,9 @@ CASES = [
     ("cantilever", ["-pd_rho", "-1"], "-pd_rho"),
     ("gregoire_d50_hn", ["-pd_cmod_points", "0.0775,0.025,0,0.3,0.025,0"], "-pd_cmod_points"),
     ("gregoire_d50_hn", ["-pd_data_file", "missing.csv"], "-pd_data_file"),
+    ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_dt_safety", "0"], "-pd_dt_safety"),
+    ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_damping", "-5"], "-pd_damping"),
+    ("gregoire_d50_hn", ["-pd_mode", "dynamic"], "-pd_mode"),
 ]
 
 

@@ -17,7 +17,7 @@ static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *total) {
 /* Physical effects the scene calls for; discretisation corrections are listed apart. */
 static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
   const PDScene *sc = m->scene;
-  const char    *names[4];
+  const char    *names[5];
   const PetscInt n = PDModelEffects(m, names);
 
   PetscFunctionBeginUser;
@@ -84,7 +84,13 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   wall = now - rec->t_start;
   PetscCall(PetscSNPrintf(path, sizeof path, "%s/summary.json.tmp", rec->dir));
   PetscCall(PetscFOpen(comm, path, "w", &fp));
-  PetscCall(PetscFPrintf(comm, fp, "{\n  \"scene\": \"%s\",\n  \"mode\": \"implicit\",\n  \"ranks\": %d,\n", sc->name, size));
+  PetscCall(PetscFPrintf(comm, fp, "{\n  \"scene\": \"%s\",\n  \"mode\": \"%s\",\n  \"ranks\": %d,\n", sc->name,
+                         sc->explicit_mode ? "explicit" : "implicit", size));
+  if (sc->explicit_mode)
+    PetscCall(PetscFPrintf(comm, fp,
+                           "  \"explicit\": {\"dt_stable_s\": %.6e, \"dt_s\": %.6e, \"time_steps\": %" PetscInt_FMT
+                           ", \"kinetic_energy_max_J\": %.6e, \"damping\": %.6e},\n",
+                           (double)rec->dt_stable, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)sc->damping));
   PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
                          m->lat->nglobal, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));

@@ -92,6 +92,7 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     PetscReal      dir[3], L0, L, s, q, g, gp;
     BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
     BondForce(m, e, s, &g, &gp);
+    if (m->commit_history) m->kappa[e] = PetscMax(m->kappa[e], s);
     for (PetscInt a = 0; a < bs; a++) {
       f[bs * i + a] -= g * dir[a];
       f[bs * j + a] += g * dir[a];

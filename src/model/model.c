@@ -438,7 +438,7 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
 }
 
 /* Physical effects the scene calls for (discretisation corrections are not effects). */
-PetscInt PDModelEffects(const PDModel *m, const char *names[4]) {
+PetscInt PDModelEffects(const PDModel *m, const char *names[5]) {
   const PDScene *sc   = m->scene;
   PetscBool      soft = PETSC_FALSE, brk = PETSC_FALSE;
   PetscInt       n = 0;
@@ -451,5 +451,6 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[4]) {
   if (soft) names[n++] = "softening_damage";
   if (brk) names[n++] = "bond_breaking";
   if (sc->kinematics == PD_KINEMATICS_FINITE) names[n++] = "geometric_nonlinearity";
+  if (sc->explicit_mode) names[n++] = "inertia";
   return n;
 }

@@ -300,13 +300,14 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   sc->limiter_stage_its  = 1;
   sc->lambda_max         = 1;
   sc->dlambda_min        = 1e-6;
+  sc->dt_safety          = 0.7;
 
   PetscOptionsBegin(comm, NULL, "pdimplicit scene", NULL);
   PetscCall(
       PDOptionString(PetscOptionsObject, "-pd_name", "Scene name (names the default output directory)", sc->name, sizeof sc->name, NULL));
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_mode", "Solution path: implicit (static) or explicit (dynamic relaxation)", PDModes, 2,
                          &mode, NULL));
-  PetscCheck(mode == 0, comm, PETSC_ERR_SUP, "Option -pd_mode: value 'explicit' is not available in this version");
+  sc->explicit_mode = mode == 1 ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_model", "Spatial model", PDModelKinds, 3, &model, NULL));
   sc->model = (PDModelKind)model;
   sc->dim   = sc->model == PD_MODEL_3D ? 3 : 2;
@@ -437,6 +438,24 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
              "Option -pd_dlambda_min: must be positive and at most -pd_dlambda_max, got %g", (double)sc->dlambda_min);
   PetscCall(
       PDOptionReal(PetscOptionsObject, "-pd_stop_cmod", "Stop once the CMOD gauge opens this much (m); 0: off", &sc->stop_cmod, NULL));
+  if (sc->explicit_mode) {
+    PetscCall(PDOptionReal(PetscOptionsObject, "-pd_ramp_time",
+                           "Explicit: duration of the fifth-order smoothstep ramp of the load factor (s); 0: 20,000 time steps",
+                           &sc->ramp_time, NULL));
+    PetscCheck(sc->ramp_time >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_ramp_time: must be non-negative, got %g", (double)sc->ramp_time);
+    PetscCall(PDOptionReal(PetscOptionsObject, "-pd_hold_time", "Explicit: time held at the end of the ramp (s)", &sc->hold_time, NULL));
+    PetscCheck(sc->hold_time >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_hold_time: must be non-negative, got %g", (double)sc->hold_time);
+    PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dt_safety", "Explicit: time step as a fraction of the stable step (THEORY.md Eq. 4.6)",
+                           &sc->dt_safety, NULL));
+    PetscCheck(sc->dt_safety > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_dt_safety: must be positive, got %g", (double)sc->dt_safety);
+    PetscCall(
+        PDOptionReal(PetscOptionsObject, "-pd_damping", "Explicit: local damping C (kg/(m^3 s)), force density -C v", &sc->damping, NULL));
+    PetscCheck(sc->damping >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_damping: must be non-negative, got %g", (double)sc->damping);
+    PetscCall(PDOptionInt(PetscOptionsObject, "-pd_output_stride", "Explicit: time steps between curve rows; 0: about 400 rows",
+                          &sc->out_stride, NULL));
+    PetscCheck(sc->out_stride >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_output_stride: must be non-negative, got %" PetscInt_FMT,
+               sc->out_stride);
+  }
   PetscCheck(sc->stop_cmod >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_stop_cmod: must be non-negative, got %g", (double)sc->stop_cmod);
   PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");

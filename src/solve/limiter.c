@@ -111,21 +111,16 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
-  const PDBonds *bd = m->bonds;
-  PetscReal     *s;
+/* Broken and softening bonds (global, each bond counted once) from the committed history. */
+PetscErrorCode PDModelCountDamage(PDModel *m) {
+  const PDBonds *bd       = m->bonds;
   PetscInt       count[2] = {0, 0}, total[2]; /* broken, softening */
 
   PetscFunctionBeginUser;
   if (!m->softening) PetscFunctionReturn(0);
-  s = m->stretch;
-  PetscCall(StretchesAt(m, u, s));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw     *law = &m->law[bd->material[e]];
     const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
-    const PetscReal  cap = Threshold(m, e);
-    m->kappa[e]          = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
-    m->level_n[e]        = m->level[e];
     if (law->kind == PD_LAW_ELASTIC || !PDBondCountedHere(m->lat, bd, e)) continue;
     if (m->kappa[e] >= t->sc)
       count[0]++;
@@ -135,6 +130,23 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   PetscCall(MPIU_Allreduce(count, total, 2, MPIU_INT, MPI_SUM, m->lat->comm));
   m->broken          = total[0];
   m->softening_bonds = total[1];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
+  const PDBonds *bd = m->bonds;
+  PetscReal     *s;
+
+  PetscFunctionBeginUser;
+  if (!m->softening) PetscFunctionReturn(0);
+  s = m->stretch;
+  PetscCall(StretchesAt(m, u, s));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscReal cap = Threshold(m, e);
+    m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
+    m->level_n[e]       = m->level[e];
+  }
+  PetscCall(PDModelCountDamage(m));
   PetscFunctionReturn(0);
 }
 

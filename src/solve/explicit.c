@@ -1,0 +1,243 @@
+/* Explicit reference path: the same scene, bond kernel and laws integrated in time with PETSc TS.
+
+   The state is X = [u; v] per rank, split for TSBASICSYMPLECTIC into "position" (du/dt = v) and
+   "momentum" (dv/dt = a(u)); velocity Verlet by default, Euler-Cromer (the thesis's scheme) with
+   -ts_basicsymplectic_type 1. The load factor follows the fifth-order smoothstep of THEORY.md Sec. 6;
+   constrained dofs move with the prescribed motion (their acceleration is lambda''(t) u_ref). Local
+   damping -C v is integrated exactly after each step (v *= exp(-C dt / rho)), which keeps the split
+   separable. Bond histories rise at every force evaluation: there is no limiter in dynamics. */
+#include "pd_solve.h"
+#include <petscts.h>
+
+typedef struct {
+  PDModel  *m;
+  PDRecord *rec;
+  IS        is_u, is_v;
+  Vec       mass;    /* nodal mass rho V per dof */
+  Vec       f_int;   /* work: internal force */
+  PetscReal t_ramp;  /* ramp duration */
+  PetscReal dt;      /* time step */
+  PetscInt  stride;  /* steps between curve rows */
+  PetscReal ke_max;  /* largest kinetic energy recorded (J) */
+  PetscBool stopped; /* the CMOD stop was reached */
+  PetscBool blew_up; /* non-finite or runaway state */
+} ExplicitCtx;
+
+/* Smoothstep load factor and its second derivative at time t. */
+static void Ramp(const ExplicitCtx *c, PetscReal t, PetscReal *lam, PetscReal *lam_tt) {
+  const PetscReal L = c->m->scene->lambda_max, T = c->t_ramp, g = PetscMin(t / T, 1);
+  *lam    = L * g * g * g * (10 - 15 * g + 6 * g * g);
+  *lam_tt = t < T ? L / (T * T) * (60 * g - 180 * g * g + 120 * g * g * g) : 0;
+}
+
+/* Stable time step (THEORY.md Eq. 4.6): dt_i = sqrt(2 rho V_i / sum_j coef_ij/|xi_ij|), minimum over
+   nodes; coef already holds c, beta, lambda and both volumes. */
+static PetscErrorCode StableTimeStep(PDModel *m, PetscReal *dt) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  PetscReal       *k, dtmin = PETSC_MAX_REAL;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscCalloc1(lat->nowned, &k));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e];
+    PetscReal      L = 0;
+    for (PetscInt a = 0; a < 3; a++) L += (lat->x[3 * j + a] - lat->x[3 * i + a]) * (lat->x[3 * j + a] - lat->x[3 * i + a]);
+    L = PetscSqrtReal(L);
+    k[i] += bd->coef[e] / L;
+    if (j < lat->nowned) k[j] += bd->coef[e] / L;
+  }
+  for (PetscInt i = 0; i < lat->nowned; i++)
+    if (k[i] > 0) dtmin = PetscMin(dtmin, PetscSqrtReal(2 * m->scene->material[lat->material[i]].rho * lat->cell_volume / k[i]));
+  PetscCall(PetscFree(k));
+  PetscCall(MPIU_Allreduce(&dtmin, dt, 1, MPIU_REAL, MPIU_MIN, lat->comm));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec v, Vec dudt, void *ctx) {
+  PetscFunctionBeginUser;
+  (void)ts;
+  (void)t;
+  (void)ctx;
+  PetscCall(VecCopy(v, dudt));
+  PetscFunctionReturn(0);
+}
+
+/* a = (lambda f_ref - f_int(u)) / (rho V) on free dofs, lambda'' u_ref on constrained ones. */
+static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec u, Vec dvdt, void *ctx) {
+  ExplicitCtx       *c = (ExplicitCtx *)ctx;
+  PDModel           *m = c->m;
+  PetscReal          lam, lam_tt;
+  PetscScalar       *a;
+  const PetscScalar *f, *fr, *ur, *fx, *ms;
+
+  PetscFunctionBeginUser;
+  (void)ts;
+  Ramp(c, t, &lam, &lam_tt);
+  m->lambda = lam;
+  PetscCall(PDModelInternalForce(m, u, c->f_int));
+  PetscCall(VecGetArray(dvdt, &a));
+  PetscCall(VecGetArrayRead(c->f_int, &f));
+  PetscCall(VecGetArrayRead(m->f_ref, &fr));
+  PetscCall(VecGetArrayRead(m->u_ref, &ur));
+  PetscCall(VecGetArrayRead(m->fixed, &fx));
+  PetscCall(VecGetArrayRead(c->mass, &ms));
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) a[k] = PetscRealPart(fx[k]) != 0 ? lam_tt * ur[k] : (lam * fr[k] - f[k]) / ms[k];
+  PetscCall(VecRestoreArrayRead(c->mass, &ms));
+  PetscCall(VecRestoreArrayRead(m->fixed, &fx));
+  PetscCall(VecRestoreArrayRead(m->u_ref, &ur));
+  PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
+  PetscCall(VecRestoreArrayRead(c->f_int, &f));
+  PetscCall(VecRestoreArray(dvdt, &a));
+  PetscFunctionReturn(0);
+}
+
+/* After each step: damping, a curve row every stride steps, the stop and stability checks. */
+static PetscErrorCode PostStep(TS ts) {
+  ExplicitCtx *c;
+  PDModel     *m;
+  Vec          X, u, v;
+  PetscInt     step;
+  PetscReal    t, norm;
+
+  PetscFunctionBeginUser;
+  PetscCall(TSGetApplicationContext(ts, &c));
+  m = c->m;
+  PetscCall(TSGetSolution(ts, &X));
+  PetscCall(TSGetStepNumber(ts, &step));
+  PetscCall(TSGetTime(ts, &t));
+  PetscCall(VecNorm(X, NORM_INFINITY, &norm));
+  /* displacements of a thousand body lengths (or such velocities in m/s): a blown-up integration */
+  if (PetscIsInfOrNanReal(norm) || norm > 1e3 * (m->scene->domain[3] - m->scene->domain[0])) {
+    c->blew_up = PETSC_TRUE;
+    PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
+    PetscFunctionReturn(0);
+  }
+  if (m->scene->damping > 0) {
+    PetscCall(VecGetSubVector(X, c->is_v, &v));
+    PetscCall(VecScale(v, PetscExpReal(-m->scene->damping * c->dt / m->scene->material[0].rho)));
+    PetscCall(VecRestoreSubVector(X, c->is_v, &v));
+  }
+  if (step % c->stride == 0) {
+    PDCurveRow     row;
+    PetscLogDouble now;
+    PetscScalar    ke;
+    PetscReal      lam, lam_tt;
+    Vec            mv;
+    Ramp(c, t, &lam, &lam_tt);
+    m->lambda = lam;
+    PetscCall(VecGetSubVector(X, c->is_u, &u));
+    PetscCall(VecGetSubVector(X, c->is_v, &v));
+    PetscCall(VecDuplicate(v, &mv));
+    PetscCall(VecPointwiseMult(mv, v, c->mass));
+    PetscCall(VecDot(mv, v, &ke));
+    PetscCall(VecDestroy(&mv));
+    c->ke_max = PetscMax(c->ke_max, 0.5 * PetscRealPart(ke));
+    PetscCall(PDModelCountDamage(m));
+    PetscCall(PetscTime(&now));
+    row.step         = step;
+    row.lambda       = lam;
+    row.newton_its   = 0;
+    row.ksp_its      = 0;
+    row.broken_bonds = m->broken;
+    row.wall         = now - c->rec->t_start;
+    PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
+    PetscCall(PDRecordAddRow(c->rec, &row));
+    c->rec->steps = step;
+    if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = PETSC_TRUE;
+    PetscCall(PDProgress(m->lat->comm, m->scene, &row, c->stopped));
+    if (c->stopped) PetscCall(PDFieldsWrite(m, c->rec, step, u));
+    PetscCall(VecRestoreSubVector(X, c->is_v, &v));
+    PetscCall(VecRestoreSubVector(X, c->is_u, &u));
+    if (c->stopped) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDExplicitRun(PDModel *m, PDRecord *rec) {
+  const PDScene    *sc   = m->scene;
+  MPI_Comm          comm = m->lat->comm;
+  ExplicitCtx       c;
+  TS                ts;
+  Vec               X;
+  PetscInt          n = m->bs * m->lat->nowned, rstart, nsteps;
+  PetscReal         dt_stable, tend;
+  TSConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&c, sizeof c));
+  c.m   = m;
+  c.rec = rec;
+  /* dynamics has no limiter: every level is open, and histories rise with each force evaluation */
+  for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_BROKEN;
+  m->commit_history = m->softening;
+  PetscCall(StableTimeStep(m, &dt_stable));
+  c.dt     = sc->dt_safety * dt_stable;
+  c.t_ramp = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c.dt;
+  tend     = c.t_ramp + sc->hold_time;
+  nsteps   = (PetscInt)PetscCeilReal(tend / c.dt);
+  c.stride = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, nsteps / 400);
+  PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
+                        (double)dt_stable, (double)c.dt, (double)sc->dt_safety, (double)c.t_ramp, nsteps));
+  rec->dt_stable = dt_stable;
+  rec->dt        = c.dt;
+
+  PetscCall(VecDuplicate(m->f_ref, &c.mass));
+  PetscCall(VecDuplicate(m->f_ref, &c.f_int));
+  {
+    PetscScalar *ms;
+    PetscCall(VecGetArray(c.mass, &ms));
+    for (PetscInt k = 0; k < n; k++) ms[k] = sc->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
+    PetscCall(VecRestoreArray(c.mass, &ms));
+  }
+  PetscCall(VecCreateMPI(comm, 2 * n, PETSC_DETERMINE, &X));
+  PetscCall(VecGetOwnershipRange(X, &rstart, NULL));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &c.is_u));
+  PetscCall(ISCreateStride(comm, n, rstart + n, 1, &c.is_v));
+  PetscCall(VecZeroEntries(X));
+
+  PetscCall(TSCreate(comm, &ts));
+  PetscCall(TSSetApplicationContext(ts, &c));
+  PetscCall(TSSetType(ts, TSBASICSYMPLECTIC));
+  PetscCall(TSBasicSymplecticSetType(ts, TSBASICSYMPLECTICVELVERLET));
+  PetscCall(TSRHSSplitSetIS(ts, "position", c.is_u));
+  PetscCall(TSRHSSplitSetIS(ts, "momentum", c.is_v));
+  PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, RHSPosition, &c));
+  PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, RHSMomentum, &c));
+  PetscCall(TSSetTimeStep(ts, c.dt));
+  PetscCall(TSSetMaxTime(ts, tend));
+  PetscCall(TSSetMaxSteps(ts, nsteps + 1));
+  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetPostStep(ts, PostStep));
+  PetscCall(TSSetFromOptions(ts));
+  PetscCall(TSSolve(ts, X));
+  PetscCall(TSGetConvergedReason(ts, &reason));
+  PetscCall(TSGetStepNumber(ts, &rec->time_steps));
+  rec->ke_max    = c.ke_max;
+  rec->converged = PETSC_TRUE;
+  if (c.blew_up) {
+    rec->converged = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status,
+                            "unstable: state blew up at time step %" PetscInt_FMT " (time step %.3g s, %.3g of the stable estimate)",
+                            rec->time_steps, (double)c.dt, (double)sc->dt_safety));
+  } else if (c.stopped)
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
+  else if (reason < 0) {
+    rec->converged = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "time integration stopped: %s", TSConvergedReasons[reason]));
+  } else {
+    Vec u;
+    PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
+    PetscCall(VecGetSubVector(X, c.is_u, &u));
+    PetscCall(PDFieldsWrite(m, rec, rec->time_steps, u));
+    PetscCall(VecRestoreSubVector(X, c.is_u, &u));
+  }
+  PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "TS %s", "basicsymplectic"));
+  PetscCall(TSDestroy(&ts));
+  PetscCall(ISDestroy(&c.is_u));
+  PetscCall(ISDestroy(&c.is_v));
+  PetscCall(VecDestroy(&X));
+  PetscCall(VecDestroy(&c.mass));
+  PetscCall(VecDestroy(&c.f_int));
+  PetscFunctionReturn(0);
+}
