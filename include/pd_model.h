@@ -24,6 +24,7 @@ typedef struct {
   unsigned char *level_n;                       /* levels at the last accepted step, to restart a step */
   PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
   PetscReal     *stretch;                       /* per-bond scratch of the limiter and the history update */
+  PetscInt       limiter_max;                   /* bond events granted per Newton iteration; 0: no cap */
   PetscBool      commit_history;                /* explicit path: every force evaluation raises kappa */
   PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
   PetscInt       softening_bonds;               /* bonds on the softening branch, not broken (global) */

@@ -83,7 +83,7 @@ typedef struct {
   PetscBool    sc_correction; /* per-bond critical stretch from lambda_ij c */
   PDControl    control;
   PDTangent    tangent;
-  PetscInt     limiter_max;       /* bond events granted per Newton iteration; 0: no cap */
+  PetscInt     limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
   PetscInt     limiter_stage_its; /* Newton iterations between grants while events are pending */
   PetscReal    lambda_max;        /* end of the load path */
   PetscReal    dlambda_min, dlambda_max;

@@ -32,7 +32,7 @@ static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
                            PDLawNames[law->kind], (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s0),
                            (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s1),
                            (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.sc), (double)law->ft, (double)law->Gf,
-                           PDTangentNames[sc->tangent], sc->limiter_max));
+                           PDTangentNames[sc->tangent], m->limiter_max));
   }
   {
     /* discretisation corrections in force; the critical-stretch one only where a law has a critical stretch */

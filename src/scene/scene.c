@@ -296,7 +296,7 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   sc->material[0].k      = 25;
   sc->material[0].alpha  = 0.25;
   sc->sc_correction      = PETSC_TRUE;
-  sc->limiter_max        = 10;
+  sc->limiter_max        = -1; /* by bond count, PDModelLimiterCap */
   sc->limiter_stage_its  = 1;
   sc->lambda_max         = 1;
   sc->dlambda_min        = 1e-6;
@@ -460,9 +460,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_max_bonds",
-                        "Damage limiter: bond events (entering softening, breaking) per Newton iteration; 0: no cap", &sc->limiter_max,
-                        NULL));
-  PetscCheck(sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT,
+                        "Damage limiter: bond events (entering softening, breaking) per Newton iteration; 0: no cap; default 10 per "
+                        "150,000 bonds, at least 10",
+                        &sc->limiter_max, &set));
+  PetscCheck(!set || sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT,
              sc->limiter_max);
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_stage_its", "Newton iterations between two grants of the limiter",
                         &sc->limiter_stage_its, NULL));

@@ -35,7 +35,18 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
     PetscCall(SNESSetLagPreconditioner(snes, 3));
     PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
   }
-  PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, 1e-8, PETSC_DEFAULT, 20, -1));
+  if (m->softening) {
+    /* full Newton steps: the increment cut is the globalisation. Backtracking on |R| stalled where
+       bonds change branch (fifth-notched beam with the bilinear law; the secant tangent, whose direction
+       need not descend, near the half-notched peak); full steps trace both with the same peaks and
+       times elsewhere (docs/softening.md) */
+    SNESLineSearch ls;
+    PetscCall(SNESGetLineSearch(snes, &ls));
+    PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
+  }
+  /* the secant tangent converges linearly: it gets up to 200 iterations per increment */
+  PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, 1e-8, PETSC_DEFAULT,
+                              m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : 20, -1));
   PetscCall(SNESSetFromOptions(snes));
   PetscFunctionReturn(0);
 }
@@ -76,7 +87,7 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *r
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
       break;
     }
-    PetscCall(PDModelGrantEvents(m, u, sc->limiter_max, &ncand, &granted));
+    PetscCall(PDModelGrantEvents(m, u, m->limiter_max, &ncand, &granted));
     if (granted) {
       res->max_events = PetscMax(res->max_events, granted);
       if (++res->stages > PD_MAX_STAGES) {
