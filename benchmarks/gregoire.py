@@ -8,7 +8,7 @@ resumes where it stopped; docs/benchmarks/gregoire.md (tables) and gregoire.png 
 with the experimental envelopes) are rewritten from that file after every run.
 
 Usage: benchmarks/gregoire.py [--dx 5e-3] [--beams hn,un] [--laws nonlinear] [--studies] [--ranks 1]
-       [--timeout 3600] [--report]     (--report only rewrites the tables and plot)
+       [--timeout 3600] [--results FILE] [--report]     (--report only rewrites the tables and plot)
 """
 import argparse
 import csv
@@ -64,13 +64,22 @@ def run_one(beam, law, dx, extra, ranks, timeout):
     return r
 
 
-def load():
-    return json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
+def load(path):
+    return json.load(open(path)) if os.path.exists(path) else {}
 
 
-def save(res):
-    with open(RESULTS, "w") as f:
+def save(res, path):
+    with open(path, "w") as f:
         json.dump(res, f, indent=1, sort_keys=True)
+
+
+def load_all():
+    """Every results file (gregoire*.json): runs on different spacings can go to different files, in parallel."""
+    res = {}
+    for name in sorted(os.listdir(OUT)):
+        if name.startswith("gregoire") and name.endswith(".json"):
+            res.update(load(os.path.join(OUT, name)))
+    return res
 
 
 def fmt(v, f="%.0f"):
@@ -134,7 +143,8 @@ def plot(res):
         ax.set_ylabel("load (N)")
         ax.set_xlim(0, 0.21)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, "gregoire.png"), dpi=110)
 
@@ -149,8 +159,9 @@ def main():
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--timeout", type=int, default=3600)
     ap.add_argument("--report", action="store_true")
+    ap.add_argument("--results", default=RESULTS, help="results file (docs/benchmarks/gregoire*.json are merged in the report)")
     a = ap.parse_args()
-    res = load()
+    res = load(a.results)
     jobs = []
     if not a.only_studies:
         for dx in [float(x) for x in a.dx.split(",")]:
@@ -169,9 +180,9 @@ def main():
         print("running", k, flush=True)
         res[k] = run_one(beam, law, dx, extra, a.ranks, a.timeout)
         print("  ", res[k]["status"], "peak", res[k].get("peak"), "wall %.0f s" % res[k].get("wall", 0), flush=True)
-        save(res)
-        report(res)
-    report(res)
+        save(res, a.results)
+        report(load_all())
+    report(load_all())
 
 
 if __name__ == "__main__":
