@@ -83,9 +83,13 @@ int main(int argc, char **argv) {
   PetscCall(PetscTime(&t1));
   rec.t_output += t1 - t0;
   PetscCall(PDSummaryWrite(comm, &model, &rec));
-  PetscCall(PetscPrintf(comm,
-                        "  %s: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton and %" PetscInt_FMT " KSP iterations; results in %s\n",
-                        rec.status, rec.steps, rec.newton_its, rec.ksp_its, rec.dir));
+  if (sc.explicit_mode)
+    PetscCall(PetscPrintf(comm, "  %s: %" PetscInt_FMT " time steps of %.4g s; results in %s\n", rec.status, rec.time_steps, (double)rec.dt,
+                          rec.dir));
+  else
+    PetscCall(PetscPrintf(comm,
+                          "  %s: %" PetscInt_FMT " steps, %" PetscInt_FMT " Newton and %" PetscInt_FMT " KSP iterations; results in %s\n",
+                          rec.status, rec.steps, rec.newton_its, rec.ksp_its, rec.dir));
   if (!converged) PetscCall(PetscFPrintf(comm, PETSC_STDERR, "pdimplicit: run stopped early: %s\n", rec.status));
   PetscCall(PDRecordDestroy(&rec));
   PetscCall(PDModelDestroy(&model));

@@ -16,6 +16,7 @@ typedef struct {
   Vec       mass;    /* nodal mass rho V per dof */
   Vec       f_int;   /* work: internal force */
   PetscReal t_ramp;  /* ramp duration */
+  PetscReal t_end;   /* ramp and hold */
   PetscReal dt;      /* time step */
   PetscInt  stride;  /* steps between curve rows */
   PetscReal ke_max;  /* largest kinetic energy recorded (J) */
@@ -118,7 +119,7 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(VecScale(v, PetscExpReal(-m->scene->damping * c->dt / m->scene->material[0].rho)));
     PetscCall(VecRestoreSubVector(X, c->is_v, &v));
   }
-  if (step % c->stride == 0) {
+  if (step % c->stride == 0 || t >= c->t_end - 0.5 * c->dt) { /* every stride steps, and the last */
     PDCurveRow     row;
     PetscLogDouble now;
     PetscScalar    ke;
@@ -175,6 +176,7 @@ PetscErrorCode PDExplicitRun(PDModel *m, PDRecord *rec) {
   c.dt     = sc->dt_safety * dt_stable;
   c.t_ramp = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c.dt;
   tend     = c.t_ramp + sc->hold_time;
+  c.t_end  = tend;
   nsteps   = (PetscInt)PetscCeilReal(tend / c.dt);
   c.stride = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, nsteps / 400);
   PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
