@@ -25,7 +25,9 @@ typedef struct {
   /* explicit path */
   PetscReal dt_stable, dt; /* stable estimate and step used (s) */
   PetscInt  time_steps;
-  PetscReal ke_max; /* largest kinetic energy at a recorded step (J) */
+  PetscReal ke_max;  /* largest kinetic energy at a recorded step (J) */
+  PetscReal v_peak;  /* largest nodal velocity (m/s) */
+  PetscReal ds_peak; /* largest stretch a bond gained in one time step */
 } PDRecord;
 
 PetscErrorCode PDRecordCreate(MPI_Comm, const PDScene *, PDRecord *);

@@ -87,10 +87,12 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   PetscCall(PetscFPrintf(comm, fp, "{\n  \"scene\": \"%s\",\n  \"mode\": \"%s\",\n  \"ranks\": %d,\n", sc->name,
                          sc->explicit_mode ? "explicit" : "implicit", size));
   if (sc->explicit_mode)
-    PetscCall(PetscFPrintf(comm, fp,
-                           "  \"explicit\": {\"dt_stable_s\": %.6e, \"dt_s\": %.6e, \"time_steps\": %" PetscInt_FMT
-                           ", \"kinetic_energy_max_J\": %.6e, \"damping\": %.6e},\n",
-                           (double)rec->dt_stable, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)sc->damping));
+    PetscCall(PetscFPrintf(
+        comm, fp,
+        "  \"explicit\": {\"dt_stable_s\": %.6e, \"dt_s\": %.6e, \"time_steps\": %" PetscInt_FMT
+        ", \"kinetic_energy_max_J\": %.6e, \"velocity_max_m_per_s\": %.6e, \"stretch_per_step_max\": %.6e, \"damping\": %.6e},\n",
+        (double)rec->dt_stable, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)rec->v_peak, (double)rec->ds_peak,
+        (double)sc->damping));
   PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
                          m->lat->nglobal, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));
