@@ -157,9 +157,18 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);
   }
-  if (m->scene->damping > 0) {
+  if (m->scene->damping > 0) { /* free dofs only: constrained ones follow the prescribed motion */
+    PetscScalar       *vv;
+    const PetscScalar *fx, *ms;
     PetscCall(VecGetSubVector(X, c->is_v, &v));
-    PetscCall(VecScale(v, PetscExpReal(-m->scene->damping * c->dt / m->scene->material[0].rho)));
+    PetscCall(VecGetArray(v, &vv));
+    PetscCall(VecGetArrayRead(m->fixed, &fx));
+    PetscCall(VecGetArrayRead(c->mass, &ms));
+    for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++)
+      if (PetscRealPart(fx[k]) == 0) vv[k] *= PetscExpReal(-m->scene->damping * c->dt * m->lat->cell_volume / PetscRealPart(ms[k]));
+    PetscCall(VecRestoreArrayRead(c->mass, &ms));
+    PetscCall(VecRestoreArrayRead(m->fixed, &fx));
+    PetscCall(VecRestoreArray(v, &vv));
     PetscCall(VecRestoreSubVector(X, c->is_v, &v));
   }
   if (step % c->stride == 0 || t >= c->t_end - 0.5 * c->dt) { /* every stride steps, and the last */
