@@ -37,6 +37,7 @@ typedef struct {
   Vec            load_pattern;                  /* unit direction on the load region's nodes */
   Vec            disp_pattern;                  /* unit direction / count on the displacement region's nodes */
   Vec            cmod_pattern;                  /* -e on gauge point 1, +e on gauge point 2 */
+  Vec            f_work;                        /* internal force for measurements (global) */
   PetscReal      force_magnitude;
   PetscInt       nconstrained;  /* global constrained dofs */
   PetscInt       nisolated;     /* global nodes without any bond, pinned */

@@ -60,6 +60,11 @@ def run(scene_name, *args, ranks=1, expect_ok=True, outdir=None):
     return r
 
 
+def peak(r):
+    """Largest load on the run's curve (N)."""
+    return max(row["load_N"] for row in r.curve)
+
+
 def fail(msg):
     print("FAIL: " + msg)
     sys.exit(1)

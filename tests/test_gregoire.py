@@ -2,11 +2,7 @@
 Usage: test_gregoire.py un|hn"""
 import sys
 
-from pdtest import check, rel, run
-
-
-def peak(r):
-    return max(row["load_N"] for row in r.curve)
+from pdtest import check, peak, rel, run
 
 
 def traced(r, name):

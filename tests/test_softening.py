@@ -2,13 +2,9 @@
 Usage: test_softening.py CASE"""
 import sys
 
-from pdtest import check, rel, run
+from pdtest import check, peak, rel, run
 
 HN = ["-pd_dx", "0.01"]
-
-
-def peak(r):
-    return max(row["load_N"] for row in r.curve)
 
 
 def mpi():

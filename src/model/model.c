@@ -252,6 +252,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   PetscCall(VecDuplicate(m->f_ref, &m->load_pattern));
   PetscCall(VecDuplicate(m->f_ref, &m->disp_pattern));
   PetscCall(VecDuplicate(m->f_ref, &m->cmod_pattern));
+  PetscCall(VecDuplicate(m->f_ref, &m->f_work));
   PetscCall(VecZeroEntries(m->f_ref));
   PetscCall(VecZeroEntries(m->u_ref));
   PetscCall(VecZeroEntries(m->load_pattern));
@@ -290,6 +291,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->load_pattern));
   PetscCall(VecDestroy(&m->disp_pattern));
   PetscCall(VecDestroy(&m->cmod_pattern));
+  PetscCall(VecDestroy(&m->f_work));
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
@@ -424,12 +426,9 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
   if (m->scene->region[m->scene->load_region].kind == PD_REGION_FORCE)
     *load = m->lambda * m->force_magnitude;
   else {
-    Vec F;
-    PetscCall(VecDuplicate(u, &F));
-    PetscCall(PDModelInternalForce(m, u, F));
-    PetscCall(VecDot(F, m->load_pattern, &v));
+    PetscCall(PDModelInternalForce(m, u, m->f_work));
+    PetscCall(VecDot(m->f_work, m->load_pattern, &v));
     *load = PetscRealPart(v);
-    PetscCall(VecDestroy(&F));
   }
   PetscCall(VecDot(u, m->disp_pattern, &v));
   *disp = PetscRealPart(v);

@@ -176,15 +176,12 @@ static PetscErrorCode PostStep(TS ts) {
     PetscLogDouble now;
     PetscScalar    ke;
     PetscReal      lam, lam_tt;
-    Vec            mv;
     Ramp(c, t, &lam, &lam_tt);
     m->lambda = lam;
     PetscCall(VecGetSubVector(X, c->is_u, &u));
     PetscCall(VecGetSubVector(X, c->is_v, &v));
-    PetscCall(VecDuplicate(v, &mv));
-    PetscCall(VecPointwiseMult(mv, v, c->mass));
-    PetscCall(VecDot(mv, v, &ke));
-    PetscCall(VecDestroy(&mv));
+    PetscCall(VecPointwiseMult(c->f_int, v, c->mass)); /* f_int is free between steps: m v */
+    PetscCall(VecDot(c->f_int, v, &ke));
     c->ke_max = PetscMax(c->ke_max, 0.5 * PetscRealPart(ke));
     PetscCall(PDModelCountDamage(m));
     PetscCall(PetscTime(&now));
