@@ -33,6 +33,9 @@ PetscErrorCode PDLawSetUp(const PDScene *, const PDMaterial *, PDLaw *);
 void           PDLawBondThresholds(const PDLaw *, PetscReal lambda, PDLawBond *);
 /* Damage d(kappa) and its derivative; kappa >= 0. */
 PetscReal PDLawDamage(const PDLaw *, const PDLawBond *, PetscReal kappa, PetscReal *dd);
+/* Area under the envelope g/c from 0 to kappa (capped at sc), per unit micromodulus: the work that took
+   the bond to its largest stretch. Stored energy at stretch s is (1 - d) s^2 / 2, the rest is dissipated. */
+PetscReal PDLawEnvelopeWork(const PDLaw *, const PDLawBond *, PetscReal kappa);
 /* Area under g/c from 0 to sc for the nominal bond (per unit micromodulus): the bond's fracture work. */
 PetscReal PDLawWorkOfFracture(const PDLaw *);
 /* The threshold at which a bond of the given level leaves it (s0 into softening, sc into breaking). */

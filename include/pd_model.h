@@ -62,4 +62,5 @@ PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscIn
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelCountDamage(PDModel *);
+PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

@@ -30,6 +30,18 @@ def crosscheck():
     pts = [r for r in exp.curve if r["cmod_m"] <= 1e-4]
     rms = math.sqrt(sum((r["load_N"] - interp(r["cmod_m"], xi, yi)) ** 2 for r in pts) / len(pts)) / pi
     check(len(pts) > 50 and rms < 0.10, "curves to CMOD 0.1 mm: RMS load difference %.1f %% of the peak over %d explicit rows (< 10 %%)" % (100 * rms, len(pts)))
+    # Energy on every row once the work exceeds 1e-3 of its final value (the first rows hold nJ).
+    # Explicit: external work = stored + dissipated + kinetic (+ damped), the integrator's own midpoint
+    # work, closes to round-off (measured 4e-7 on the early rows, 3e-8 later; limit 1e-5). Implicit: the trapezoidal external work along the
+    # increments against stored + dissipated (measured 0.15 %; the issue asks 1 %).
+    for name, r, tol in (("explicit", exp, 1e-5), ("implicit", imp, 0.01)):
+        wmax = r.curve[-1]["external_J"]
+        bal = [abs(x["external_J"] - x["stored_J"] - x["dissipated_J"] - x["kinetic_J"] - x["damped_J"]) / x["external_J"]
+               for x in r.curve if x["external_J"] > 1e-3 * wmax]
+        check(max(bal) < tol, "%s energy balance on %d rows: largest mismatch %.1e of the external work (< %g); dissipated %.4f J of %.4f J" % (
+            name, len(bal), max(bal), tol, r.curve[-1]["dissipated_J"], wmax))
+    check(rel(exp.curve[-1]["dissipated_J"], imp.curve[-1]["dissipated_J"]) < 0.05,
+          "dissipated energy at CMOD 0.2 mm: explicit %.4f J, implicit %.4f J (within 5 %%)" % (exp.curve[-1]["dissipated_J"], imp.curve[-1]["dissipated_J"]))
 
 
 def elastic():
@@ -38,6 +50,10 @@ def elastic():
     imp = run("cantilever", "-pd_dx", "0.02").curve[-1]["disp_m"]
     r = run("cantilever", "-pd_dx", "0.02", "-pd_mode", "explicit", "-pd_hold_time", "0.05", "-pd_damping", "1e6")
     exp = r.curve[-1]["disp_m"]
+    last = r.curve[-1]
+    check(last["kinetic_J"] < 1e-9 * last["stored_J"], "at rest: kinetic %.2e J against stored %.4f J" % (last["kinetic_J"], last["stored_J"]))
+    check(rel(last["external_J"], last["stored_J"] + last["damped_J"]) < 1e-6, "work %.6f J = stored %.6f J + damped %.6f J (1e-6)" % (
+        last["external_J"], last["stored_J"], last["damped_J"]))
     check(rel(exp, imp) < 0.005, "tip deflection: explicit, damped to rest, %.9e m; implicit %.9e m; difference %.1e < 0.5 %%" % (exp, imp, rel(exp, imp)))
 
 

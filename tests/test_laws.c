@@ -85,6 +85,11 @@ int main(int argc, char **argv) {
       W += 0.5 * (f + fprev) * (s - prev);
       prev  = s;
       fprev = f;
+      /* the envelope work part-way (every branch is passed: s0 is below sc/20 for all four laws) */
+      if (i == n / 20 || i == n / 5 || i == n / 2 || i == 4 * n / 5) {
+        PetscCall(PetscSNPrintf(what, sizeof what, "%s: envelope work to %.2g sc = closed form", names[k], (double)i / n));
+        CheckRel(what, W, PDLawEnvelopeWork(&law, &law.nominal, s), 1e-4);
+      }
     }
     PetscCall(PetscSNPrintf(what, sizeof what, "%s: integral of g/c to sc = closed form", names[k]));
     CheckRel(what, W, PDLawWorkOfFracture(&law), 1e-4);

@@ -109,23 +109,31 @@ PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, Pet
   }
 }
 
-PetscReal PDLawWorkOfFracture(const PDLaw *law) {
-  const PetscReal s0 = law->nominal.s0, s1 = law->nominal.s1, sc = law->nominal.sc;
+/* Envelope work W(kappa) = int_0^kappa (1 - d(x)) x dx, in closed form: the branches of g/c are linear
+   except the non-linear law's exponential, whose h integrates exactly. */
+PetscReal PDLawEnvelopeWork(const PDLaw *law, const PDLawBond *t, PetscReal kappa) {
+  const PetscReal s0 = t->s0, s1 = t->s1, sc = t->sc, x = PetscMin(kappa, sc);
+  if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_LINEAR || x <= s0) return 0.5 * x * x;
   switch (law->kind) {
-  case PD_LAW_LINEAR:
-    return 0.5 * sc * sc;
-  case PD_LAW_BILINEAR:
-    return 0.5 * s0 * sc;
-  case PD_LAW_TRILINEAR:
-    return 0.5 * s0 * s0 + 0.5 * (s1 - s0) * (1 + law->beta) * s0 + 0.5 * (sc - s1) * law->beta * s0;
-  case PD_LAW_NONLINEAR: {
-    const PetscReal k = law->k, a = law->alpha, den = 1 - PetscExpReal(-k);
-    const PetscReal Ih = (1 - (1 - den / k) / den + 0.5 * a) / (1 + a); /* int_0^1 h(x) dx */
+  case PD_LAW_BILINEAR: /* g/c falls linearly from s0 at s0 to 0 at sc */
+    return 0.5 * s0 * s0 + 0.5 * (x - s0) * (s0 + s0 * (sc - x) / (sc - s0));
+  case PD_LAW_TRILINEAR: { /* s0 -> beta s0 at s1, then -> 0 at sc */
+    const PetscReal b = law->beta;
+    if (x <= s1) return 0.5 * s0 * s0 + 0.5 * (x - s0) * (s0 + s0 * (1 + (b - 1) * (x - s0) / (s1 - s0)));
+    return 0.5 * s0 * s0 + 0.5 * (s1 - s0) * (1 + b) * s0 + 0.5 * (x - s1) * (b * s0 + b * s0 * (sc - x) / (sc - s1));
+  }
+  case PD_LAW_NONLINEAR: { /* g/c = s0 h((x - s0)/(sc - s0)) */
+    const PetscReal k = law->k, a = law->alpha, den = 1 - PetscExpReal(-k), X = (x - s0) / (sc - s0);
+    const PetscReal Ih = (X - (X - (1 - PetscExpReal(-k * X)) / k) / den + a * (X - 0.5 * X * X)) / (1 + a);
     return 0.5 * s0 * s0 + s0 * (sc - s0) * Ih;
   }
   default:
-    return 0;
+    return 0.5 * x * x;
   }
+}
+
+PetscReal PDLawWorkOfFracture(const PDLaw *law) {
+  return PDLawEnvelopeWork(law, &law->nominal, law->nominal.sc);
 }
 
 PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PDBondLevel level) {

@@ -45,6 +45,14 @@ static inline const PDLawBond *Thresholds(const PDModel *m, PetscInt e, const PD
   return m->thr ? &m->thr[e] : &law->nominal;
 }
 
+/* The largest stretch a bond's law sees at stretch s: its history, raised by s, and held just below the
+   threshold the limiter has not yet let it pass (the limit from below). */
+static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDLaw *law, const PDLawBond *t, PetscReal s, PetscReal *cap) {
+  const PetscReal kap = PetscMax(m->kappa[e], s);
+  *cap                = PDLawNextThreshold(law, t, (PDBondLevel)m->level[e]);
+  return kap >= *cap ? *cap * (1 - 1e-12) : kap;
+}
+
 /* Scalar bond force g(s) and its slope. History kappa_n and the level the limiter allows give the
    effective largest stretch; a bond held below a threshold stays on its current branch. Compression is
    linear elastic whatever the damage (cracks do not interpenetrate). */
@@ -66,12 +74,9 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
   }
   {
     const PDLawBond *t = Thresholds(m, e, law);
-    cap                = PDLawNextThreshold(law, t, (PDBondLevel)m->level[e]);
-    kap                = PetscMax(m->kappa[e], s);
-    /* held at the threshold the limiter has not yet let it pass: the limit from below */
-    if (kap >= cap) kap = cap * (1 - 1e-12);
-    d  = PDLawDamage(law, t, kap, &dd);
-    *g = c * (1 - d) * s;
+    kap                = EffectiveHistory(m, e, law, t, s, &cap);
+    d                  = PDLawDamage(law, t, kap, &dd);
+    *g                 = c * (1 - d) * s;
     /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
     if (m->scene->tangent == PD_TANGENT_CONSISTENT && s >= m->kappa[e] && s < cap)
       *gp = c * ((1 - d) - s * dd);
@@ -99,6 +104,38 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     }
   }
   PetscCall(PetscLogFlops(30.0 * bd->nbonds));
+  PetscFunctionReturn(0);
+}
+
+/* Energy of the bonds this rank counts: stored c (1 - d) s^2 |xi| / 2 (c s^2 |xi| / 2 in compression) and
+   dissipated c |xi| (W(kappa) - (1 - d) kappa^2 / 2), W the law's envelope work. The |xi| turns the
+   stretch integral into work for the standard stretch (ds = e.deta / |xi|); with the modified stretch
+   it is the small-strain value. */
+PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  PetscReal        es = 0, ed = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e];
+    PetscReal      dir[3], L0, L, s, q, c = bd->coef[e];
+    if (!PDBondCountedHere(lat, bd, e)) continue;
+    BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
+    if (!m->softening || m->law[bd->material[e]].kind == PD_LAW_ELASTIC) {
+      es += 0.5 * c * s * s * L0;
+      continue;
+    }
+    {
+      const PDLaw     *law = &m->law[bd->material[e]];
+      const PDLawBond *t   = Thresholds(m, e, law);
+      PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(s, 0), &cap), d = PDLawDamage(law, t, kap, &dd);
+      es += 0.5 * c * (s < 0 ? 1 : 1 - d) * s * s * L0;
+      ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
+    }
+  }
+  *stored     = es;
+  *dissipated = ed;
   PetscFunctionReturn(0);
 }
 

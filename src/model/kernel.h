@@ -6,6 +6,7 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscS
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
+PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
 PetscReal      PDModelBondDamage(const PDModel *, PetscInt e);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);

@@ -418,15 +418,16 @@ PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u) {
 }
 
 /* Curve quantities: load (applied force, or reaction of a displacement region along its direction),
-   mean displacement of the displacement region along the load direction, and the CMOD gauge. */
+   mean displacement of the displacement region along the load direction, and the CMOD gauge. Leaves the
+   internal force f_int(u) in m->f_work for the drivers' external-work sums. */
 PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod) {
   PetscScalar v;
 
   PetscFunctionBeginUser;
+  PetscCall(PDModelInternalForce(m, u, m->f_work));
   if (m->scene->region[m->scene->load_region].kind == PD_REGION_FORCE)
     *load = m->lambda * m->force_magnitude;
   else {
-    PetscCall(PDModelInternalForce(m, u, m->f_work));
     PetscCall(VecDot(m->f_work, m->load_pattern, &v));
     *load = PetscRealPart(v);
   }
@@ -437,6 +438,22 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
     PetscCall(VecDot(u, m->cmod_pattern, &v));
     *cmod = PetscRealPart(v);
   }
+  PetscFunctionReturn(0);
+}
+
+/* Strain energy stored in the bonds and energy dissipated by damage, summed over ranks (J). */
+PetscErrorCode PDModelEnergy(PDModel *m, Vec u, PetscReal *stored, PetscReal *dissipated) {
+  const PetscScalar *ul;
+  Vec                loc;
+  PetscReal          e[2], g[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
+  PetscCall(PDModelEnergiesLocal(m, ul, &e[0], &e[1]));
+  PetscCall(PDModelRestoreLocal(m, &ul, &loc));
+  PetscCall(MPIU_Allreduce(e, g, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
+  *stored     = g[0];
+  *dissipated = g[1];
   PetscFunctionReturn(0);
 }
 

@@ -117,8 +117,9 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
   Mat            J;
-  Vec            u, u_n, r;
-  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps;
+  Vec            u, u_n, r, du, f_prev;
+  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, w_ext = 0;
+  PetscScalar    dw;
   PetscInt       step = 0;
 
   PetscFunctionBeginUser;
@@ -126,7 +127,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &u_n));
   PetscCall(VecDuplicate(m->f_ref, &r));
+  PetscCall(VecDuplicate(m->f_ref, &du));
+  PetscCall(VecDuplicate(m->f_ref, &f_prev));
   PetscCall(VecZeroEntries(u_n));
+  PetscCall(VecZeroEntries(f_prev)); /* f_int(0) */
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
   PetscCall(SNESSetJacobian(snes, J, J, PDModelJacobian, m));
@@ -163,6 +167,14 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       continue;
     }
     PetscCall(PDModelCommitHistory(m, u));
+    PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
+    /* external work, trapezoidal along the path: at equilibrium the applied forces and reactions are
+       f_int on every dof, so dW = (f_int(u_n) + f_int(u)).(u - u_n) / 2 */
+    PetscCall(VecWAXPY(du, -1, u_n, u));
+    PetscCall(VecAXPY(f_prev, 1, m->f_work));
+    PetscCall(VecDot(f_prev, du, &dw));
+    w_ext += 0.5 * PetscRealPart(dw);
+    PetscCall(VecCopy(m->f_work, f_prev));
     PetscCall(VecCopy(u, u_n));
     lambda_n = lam;
     step++;
@@ -175,7 +187,9 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     row.ksp_its      = res.lits;
     row.broken_bonds = m->broken;
     row.wall         = now - rec->t_start;
-    PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
+    row.external     = w_ext;
+    row.kinetic = row.damped = 0;
+    PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
     PetscCall(PDRecordAddRow(rec, &row));
     if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
       stop = PETSC_TRUE;
@@ -215,5 +229,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&u_n));
   PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&du));
+  PetscCall(VecDestroy(&f_prev));
   PetscFunctionReturn(0);
 }

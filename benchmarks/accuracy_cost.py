@@ -1,0 +1,227 @@
+#!/usr/bin/env python3
+"""What accuracy costs in time: implicit and explicit paths on the same points.
+
+Points: the elastic cantilever against Timoshenko (tip deflection) and the Gregoire D = 50 mm beams
+against experiment (peak load and load-CMOD curve, unnotched and half-notched) at dx = 20, 10, 5, 2.5 mm
+with horizon ratio pi, and horizon ratios 2, 3, 4 at the spacings where both paths fit the time budget.
+Each run records error, wall time, peak memory (largest resident set), nodes, bonds, and Newton/KSP
+iterations or time steps. Explicit settings: Gregoire beams undamped with a 50 ms smoothstep ramp (about
+250 first bending periods; it puts the half-notched dx = 5 mm peak within 1 % of the implicit one),
+cantilever loaded over 20,000 steps and held 50 ms with damping C = 1e6 kg/(m^3 s) (near critical for
+its first mode) until at rest.
+
+Every finished run is kept in docs/benchmarks/accuracy_cost.json (an interrupted study resumes);
+docs/benchmarks/accuracy_cost.md and accuracy_cost.png are rewritten from it after each run.
+
+Usage: benchmarks/accuracy_cost.py [--only implicit|explicit] [--max-wall 2400] [--report]
+       PDIMPLICIT=/path/to/binary to time a copy while the build directory changes.
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import tempfile
+import threading
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
+OUT = os.path.join(ROOT, "docs", "benchmarks")
+RESULTS = os.path.join(OUT, "accuracy_cost.json")
+PI = "3.141592653589793"
+
+EXPLICIT = {
+    "cantilever": ["-pd_mode", "explicit", "-pd_hold_time", "0.05", "-pd_damping", "1e6"],
+    "gregoire_d50_hn": ["-pd_mode", "explicit", "-pd_ramp_time", "0.05"],
+    "gregoire_d50_un": ["-pd_mode", "explicit", "-pd_ramp_time", "0.05"],
+}
+DATA = {"gregoire_d50_hn": "gregoire2013_d50_hn_load_cmod.csv", "gregoire_d50_un": "gregoire2013_d50_un_load_cmod.csv"}
+
+# (scene, dx, horizon ratio, paths): cheapest first, so a partial study still covers every axis
+POINTS = []
+for sc in ("cantilever", "gregoire_d50_hn", "gregoire_d50_un"):
+    for dx in (0.02, 0.01):
+        for m in ("2", "3", PI, "4"):
+            POINTS.append((sc, dx, m, ("implicit", "explicit")))
+POINTS += [("gregoire_d50_hn", 0.005, m, ("implicit", "explicit")) for m in ("2", "3", PI, "4")]
+POINTS += [("gregoire_d50_un", 0.005, PI, ("implicit", "explicit"))]
+POINTS += [("cantilever", 0.005, m, ("implicit",)) for m in ("2", "3", PI, "4")]
+POINTS += [("gregoire_d50_hn", 0.0025, PI, ("explicit", "implicit"))]
+
+
+def key(scene, dx, m, path):
+    return "%s/dx=%g/m=%.4g/%s" % (scene, dx, float(m), path)
+
+
+def timoshenko(P=1e4, L=1.0, E=30e9, b=0.1, h=0.1, nu=0.25, k=5.0 / 6.0):
+    I = b * h ** 3 / 12
+    G = E / (2 * (1 + nu))
+    return P * L ** 3 / (3 * E * I) + P * L / (k * G * b * h)
+
+
+def experiment(scene):
+    rows = [l for l in open(os.path.join(ROOT, "data", DATA[scene])) if not l.startswith("#")][1:]
+    return [(1e-3 * float(l.split(",")[0]), 1e3 * float(l.split(",")[1])) for l in rows]
+
+
+def interp(x, xs, ys):
+    if x <= xs[0]:
+        return ys[0]
+    for k in range(1, len(xs)):
+        if xs[k] >= x:
+            t = (x - xs[k - 1]) / (xs[k] - xs[k - 1])
+            return ys[k - 1] + t * (ys[k] - ys[k - 1])
+    return None
+
+
+def curve_error(curve, ref, cmod_max=2e-4):
+    """RMS over the reference points up to cmod_max (and the run's last CMOD) of the load difference,
+    over the reference peak."""
+    xs, ys = [c[0] for c in curve], [c[1] for c in curve]
+    peak = max(p for _, p in ref)
+    d = [interp(x, xs, ys) - p for x, p in ref if x <= cmod_max and x <= xs[-1]]
+    d = [v for v in d if v is not None]
+    return math.sqrt(sum(v * v for v in d) / len(d)) / peak if d else None
+
+
+def run_one(scene, dx, m, path, timeout):
+    out = tempfile.mkdtemp(prefix="pdcost_")
+    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", scene + ".opts"), "-pd_dx", str(dx), "-pd_horizon_ratio", m,
+           "-pd_output_dir", out] + (EXPLICIT[scene] if path == "explicit" else [])
+    t0 = time.time()
+    errf = tempfile.TemporaryFile(mode="w+")
+    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=errf)
+    timer = threading.Timer(timeout, p.kill)
+    timer.start()
+    _, status, usage = os.wait4(p.pid, 0)  # this child's own rusage: its largest resident set (kB)
+    timer.cancel()
+    p.returncode = os.waitstatus_to_exitcode(status)
+    wall = time.time() - t0
+    if wall >= timeout:
+        return {"status": "stopped after %d s" % timeout, "wall": timeout}
+    errf.seek(0)
+    err = errf.read()
+    r = {"wall": wall, "returncode": p.returncode, "max_rss_mb": usage.ru_maxrss / 1024.0}
+    try:
+        s = json.load(open(os.path.join(out, "summary.json")))
+        rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
+    except OSError:
+        r["status"] = "failed: " + (err.strip().splitlines() or ["?"])[-1][:100]
+        return r
+    r.update(status=s["status"], converged=s["converged"], nodes=s["nodes"], bonds=s["bonds"], newton=s.get("newton_its"),
+             ksp=s.get("ksp_its"), peak=s["peak_load_N"], timings=s.get("timings"), time_steps=s.get("explicit", {}).get("time_steps"),
+             curve=[[float(x["cmod_m"]) if x["cmod_m"] != "nan" else 0.0, float(x["load_N"]), float(x["disp_m"])] for x in rows])
+    return r
+
+
+def errors(k, r, res):
+    """Error against the physical reference, and against the finest implicit run of the same scene."""
+    scene = k.split("/")[0]
+    if "curve" not in r:
+        return None, None, None
+    if scene == "cantilever":
+        ref = timoshenko()
+        return abs(r["curve"][-1][2] - ref) / ref, None, None
+    exp = experiment(scene)
+    pexp = max(p for _, p in exp)
+    finest = sorted((float(kk.split("/")[1][3:]), kk) for kk in res if kk.startswith(scene + "/") and kk.endswith("m=3.142/implicit")
+                    and "curve" in res[kk])
+    self_err = None
+    if finest and finest[0][1] != k:
+        c = res[finest[0][1]]["curve"]
+        self_err = curve_error(r["curve"], [(x[0], x[1]) for x in c if x[0] <= 2e-4])
+    return abs(r["peak"] - pexp) / pexp, curve_error(r["curve"], exp), self_err
+
+
+def fmt(v, f):
+    return "-" if v is None else f % v
+
+
+def report(res):
+    lines = ["# Accuracy against cost: implicit and explicit paths", "",
+             "Written by `benchmarks/accuracy_cost.py` from `accuracy_cost.json`. One rank per run on the 2-core",
+             "machine (the other core was free or building). Errors: cantilever, tip deflection against Timoshenko",
+             "(%.4e m); Gregoire beams, peak load against the experimental mean and RMS load difference over the" % timoshenko(),
+             "experimental mean curve up to CMOD 0.2 mm (over the experimental peak); 'vs finest' is the RMS curve",
+             "difference to the finest implicit run of the same beam (horizon ratio pi), the discretisation error",
+             "the model itself can remove. Memory: largest resident set of the process.", "",
+             "| scene | dx (mm) | m | path | nodes | bonds | error | curve error | vs finest | wall (s) | memory (MB) | Newton / KSP or steps | status |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for k in sorted(res, key=lambda s: (s.split("/")[0], -float(s.split("/")[1][3:]), s.split("/")[2], s.split("/")[3])):
+        r = res[k]
+        scene, dxs, ms, path = k.split("/")
+        e, ce, se = errors(k, r, res)
+        its = ("%d steps" % r["time_steps"]) if r.get("time_steps") else ("%s / %s" % (r.get("newton"), r.get("ksp")) if r.get("newton") is not None else "-")
+        lines.append("| %s | %g | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            scene.replace("gregoire_d50_", "Gregoire "), 1e3 * float(dxs[3:]), ms[2:], path, fmt(r.get("nodes"), "%d"),
+            fmt(r.get("bonds"), "%d"), fmt(e and 100 * e, "%.2f %%"), fmt(ce and 100 * ce, "%.1f %%"), fmt(se and 100 * se, "%.2f %%"),
+            fmt(r.get("wall"), "%.1f"), fmt(r.get("max_rss_mb"), "%.0f"), its, r["status"][:30]))
+    lines += ["", "## Headline: explicit over implicit wall time, half-notched beam to CMOD 0.2 mm", ""]
+    for dx in (0.005, 0.0025):
+        ki, ke = key("gregoire_d50_hn", dx, PI, "implicit"), key("gregoire_d50_hn", dx, PI, "explicit")
+        if ki in res and ke in res and "curve" in res[ki] and "curve" in res[ke]:
+            d = curve_error(res[ke]["curve"], [(x[0], x[1]) for x in res[ki]["curve"] if x[0] <= 2e-4])
+            lines.append("- dx = %g mm: explicit %.0f s, implicit %.0f s, ratio %.2f; the two curves differ by %.2f %% RMS of the peak, peaks %.1f and %.1f N." % (
+                1e3 * dx, res[ke]["wall"], res[ki]["wall"], res[ke]["wall"] / res[ki]["wall"], 100 * d, res[ke]["peak"], res[ki]["peak"]))
+    with open(os.path.join(OUT, "accuracy_cost.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    plot(res)
+
+
+def plot(res):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    for ax, scene, what in zip(axes, ("cantilever", "gregoire_d50_hn", "gregoire_d50_un"),
+                               ("tip deflection error vs Timoshenko", "half-notched: peak error vs experiment", "unnotched: peak error vs experiment")):
+        for path, mk in (("implicit", "o"), ("explicit", "s")):
+            for m, col in (("m=2", "C0"), ("m=3", "C1"), ("m=3.142", "C2"), ("m=4", "C3")):
+                pts = []
+                for k, r in res.items():
+                    if k.startswith(scene + "/") and k.endswith("/%s/%s" % (m, path)) and "curve" in r and r.get("converged"):
+                        e = errors(k, r, res)[0]
+                        pts.append((r["wall"], max(e, 1e-5), 1e3 * float(k.split("/")[1][3:])))
+                pts.sort()
+                if pts:
+                    ax.plot([p[0] for p in pts], [p[1] for p in pts], marker=mk, color=col, ls="-" if path == "implicit" else "--",
+                            label="%s %s" % (path, m.replace("3.142", "pi")))
+                    for p in pts:
+                        ax.annotate("%g" % p[2], (p[0], p[1]), fontsize=6)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("wall time (s), labels: dx (mm)")
+        ax.set_ylabel("relative error")
+        ax.set_title(what, fontsize=9)
+        ax.grid(alpha=0.3, which="both")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, "accuracy_cost.png"), dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--only", choices=("implicit", "explicit"))
+    ap.add_argument("--timeout", type=int, default=3600)
+    ap.add_argument("--report", action="store_true")
+    a = ap.parse_args()
+    res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
+    for scene, dx, m, paths in ([] if a.report else POINTS):
+        for path in paths:
+            k = key(scene, dx, m, path)
+            if k in res or (a.only and path != a.only):
+                continue
+            print("running", k, flush=True)
+            res[k] = run_one(scene, dx, m, path, a.timeout)
+            print("  %s peak %s wall %.0f s" % (res[k]["status"], res[k].get("peak"), res[k]["wall"]), flush=True)
+            with open(RESULTS, "w") as f:
+                json.dump(res, f, indent=1, sort_keys=True)
+            report(res)
+    report(res)
+
+
+if __name__ == "__main__":
+    main()
