@@ -31,6 +31,15 @@ typedef struct {
   PetscReal ke_max;  /* largest kinetic energy at a recorded step (J) */
   PetscReal v_peak;  /* largest nodal velocity (m/s) */
   PetscReal ds_peak; /* largest stretch a bond gained in one time step */
+  /* failure search */
+  PetscInt ntrials;
+  struct {
+    PetscReal load;    /* test load (N) */
+    PetscInt  verdict; /* 1 carried (converged), -1 failed */
+    PetscInt  steps;   /* time steps the trial took */
+    char      why[96];
+  } trial[64];
+  PetscReal fail_lower, fail_upper; /* largest load carried, smallest that failed (N); 0: none */
 } PDRecord;
 
 PetscErrorCode PDRecordCreate(MPI_Comm, const PDScene *, PDRecord *);

@@ -19,6 +19,7 @@ typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE } PDControl;
 typedef enum { PD_TANGENT_CONSISTENT, PD_TANGENT_SECANT } PDTangent;
 typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
 typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
+typedef enum { PD_FAILURE_DAMAGE, PD_FAILURE_VELOCITY, PD_FAILURE_FORCE } PDFailureCriterion;
 
 extern const char *const PDModelKinds[];
 extern const char *const PDInfluences[];
@@ -29,6 +30,7 @@ extern const char *const PDControlNames[];
 extern const char *const PDTangentNames[];
 extern const char *const PDShapes[];
 extern const char *const PDRegionKinds[];
+extern const char *const PDFailureCriteria[];
 
 /* Geometry shared by materials and node regions. A box that has zero extent along an axis selects
    the layer of nodes whose cells it cuts (nodes within dx/2 of that plane). */
@@ -107,6 +109,15 @@ typedef struct {
   PetscReal dt_safety;  /* fraction of the stable time step */
   PetscReal damping;    /* local damping C (kg/(m^3 s)) */
   PetscInt  out_stride; /* time steps between curve rows; 0: about 400 rows */
+  /* failure search (-pd_failure_search): explicit trials held at constant loads, geometric bisection */
+  PetscBool          failure_search;
+  PDFailureCriterion failure_criterion;
+  PetscReal          failure_bracket[2]; /* first lower and upper test loads (N); 0: half and twice the scene's load */
+  PetscReal          failure_tol;        /* stop when (upper - lower) / lower is below this */
+  PetscReal          failure_vtol;       /* velocity decay: mean loaded-node speed over its largest value in the trial */
+  PetscReal          failure_ftol;       /* force decay: mean out-of-balance over applied force at the loaded nodes */
+  PetscReal          failure_dtol;       /* bond damage: fraction of bonds broken per time step counted as still */
+  PetscReal          failure_window;     /* bond damage: time (s) damage stays still, or load and velocity stay aligned */
 } PDScene;
 
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);

@@ -5,3 +5,4 @@
 
 PetscErrorCode PDStaticRun(PDModel *, PDRecord *);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
+PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);

@@ -66,5 +66,24 @@ def stability():
     check(r.summary["converged"] and r.curve[-1]["cmod_m"] >= 2e-4, "0.9 x the stable step: stable, traced to CMOD 0.2 mm (%s)" % r.summary["status"])
 
 
+def failure():
+    # Load-controlled half-notched beam at dx = 10 mm: the failure search (bond-damage criterion, 2 %)
+    # against the limit load of the same static problem, the implicit displacement-controlled peak.
+    tol = 0.02
+    r = run("gregoire_d50_hn_failure", *HN10, "-pd_failure_tol", tol)
+    fs = r.summary["failure_search"]
+    lo, hi = fs["lower_N"], fs["upper_N"]
+    check(r.summary["status"].startswith("completed") and 0 < lo < hi, "bracket found: %.1f to %.1f N (%s)" % (lo, hi, r.summary["status"]))
+    check((hi - lo) / lo <= tol, "bracket width %.2f %% <= %g %%" % (100 * (hi - lo) / lo, 100 * tol))
+    carried = [t["load_N"] for t in fs["trials"] if t["carried"]]
+    failed = [t["load_N"] for t in fs["trials"] if not t["carried"]]
+    check(max(carried) == lo and min(failed) == hi and max(carried) < min(failed),
+          "every load carried (%s) lies below every load that failed (%s)" % (", ".join("%.0f" % x for x in carried), ", ".join("%.0f" % x for x in failed)))
+    peak = run("gregoire_d50_hn", *HN10).summary["peak_load_N"]
+    mid = 0.5 * (lo + hi)
+    check(rel(mid, peak) < 0.03, "failure load %.1f N against the implicit limit load %.1f N: %.2f %% (< 3 %%)" % (mid, peak, 100 * rel(mid, peak)))
+    check(abs(max(row["load_N"] for row in r.curve) - lo) < 1e-6 * lo, "curve.csv holds the trial at the largest load carried")
+
+
 if __name__ == "__main__":
-    {"elastic": elastic, "crosscheck": crosscheck, "stability": stability}[sys.argv[1]]()
+    {"elastic": elastic, "crosscheck": crosscheck, "stability": stability, "failure": failure}[sys.argv[1]]()

@@ -93,6 +93,16 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
         ", \"kinetic_energy_max_J\": %.6e, \"velocity_max_m_per_s\": %.6e, \"stretch_per_step_max\": %.6e, \"damping\": %.6e},\n",
         (double)rec->dt_stable, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)rec->v_peak, (double)rec->ds_peak,
         (double)sc->damping));
+  if (sc->failure_search) {
+    PetscCall(PetscFPrintf(
+        comm, fp, "  \"failure_search\": {\"criterion\": \"%s\", \"tolerance\": %.6e, \"lower_N\": %.6e, \"upper_N\": %.6e, \"trials\": [",
+        PDFailureCriteria[sc->failure_criterion], (double)sc->failure_tol, (double)rec->fail_lower, (double)rec->fail_upper));
+    for (PetscInt k = 0; k < rec->ntrials; k++)
+      PetscCall(PetscFPrintf(comm, fp, "%s\n    {\"load_N\": %.6e, \"carried\": %s, \"time_steps\": %" PetscInt_FMT ", \"reason\": \"%s\"}",
+                             k ? "," : "", (double)rec->trial[k].load, rec->trial[k].verdict > 0 ? "true" : "false", rec->trial[k].steps,
+                             rec->trial[k].why));
+    PetscCall(PetscFPrintf(comm, fp, "]},\n"));
+  }
   PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
                          m->lat->nglobal, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));

@@ -13,7 +13,53 @@ const char *const        PDControlNames[]    = {"displacement", "force"};
 const char *const        PDTangentNames[]    = {"consistent", "secant"};
 const char *const        PDShapes[]          = {"box", "cylinder"};
 const char *const        PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
+const char *const        PDFailureCriteria[] = {"damage", "velocity", "force"};
 static const char *const PDModes[]           = {"implicit", "explicit"};
+
+/* Failure search options (Ness 2019 Sec. 3.5, 4.3). Tolerances are relative where the seed's are absolute
+   (its velocity tolerance is in m/s), so that one default serves beams of any size and load. */
+static PetscErrorCode ReadFailureSearch(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
+  PetscInt  crit = PD_FAILURE_DAMAGE, n = 2;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  sc->failure_tol    = 0.02;
+  sc->failure_vtol   = 1e-2;
+  sc->failure_ftol   = 0.05;
+  sc->failure_dtol   = 1e-5;
+  sc->failure_window = 0;
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_failure_criterion", "Failure search: when a trial has failed or converged", PDFailureCriteria, 3,
+                         &crit, NULL));
+  sc->failure_criterion = (PDFailureCriterion)crit;
+  PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_failure_bracket", "Failure search: first lower,upper test loads (N)", sc->failure_bracket,
+                              &n, &set));
+  PetscCheck(!set || (n == 2 && sc->failure_bracket[0] > 0 && sc->failure_bracket[1] > sc->failure_bracket[0]), comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_failure_bracket: needs two loads 0 < lower < upper, got %" PetscInt_FMT " value(s) %g,%g", n,
+             (double)sc->failure_bracket[0], (double)(n > 1 ? sc->failure_bracket[1] : 0));
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_tol", "Failure search: relative bracket width (upper - lower)/lower to stop at",
+                         &sc->failure_tol, NULL));
+  PetscCheck(sc->failure_tol > 0 && sc->failure_tol < 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_tol: must lie in (0, 1), got %g",
+             (double)sc->failure_tol);
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_velocity_tol",
+                         "Failure search: converged when the mean loaded-node speed falls below this fraction of its largest value",
+                         &sc->failure_vtol, NULL));
+  PetscCheck(sc->failure_vtol > 0 && sc->failure_vtol < 1, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_failure_velocity_tol: must lie in (0, 1), got %g", (double)sc->failure_vtol);
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_force_tol",
+                         "Failure search (force decay): converged when out-of-balance over applied force at the loaded nodes is below this",
+                         &sc->failure_ftol, NULL));
+  PetscCheck(sc->failure_ftol > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_force_tol: must be positive, got %g", (double)sc->failure_ftol);
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_damage_tol",
+                         "Failure search (bond damage): fraction of bonds broken per time step below which damage counts as still",
+                         &sc->failure_dtol, NULL));
+  PetscCheck(sc->failure_dtol > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_damage_tol: must be positive, got %g", (double)sc->failure_dtol);
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_window",
+                         "Failure search (bond damage): time (s) damage must stay still, or load and velocity stay aligned; 0: a quarter of the ramp",
+                         &sc->failure_window, NULL));
+  PetscCheck(sc->failure_window >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_window: must be non-negative, got %g",
+             (double)sc->failure_window);
+  PetscFunctionReturn(0);
+}
 
 /* 2D scenes give boxes as x0,y0,x1,y1 and points as x,y; store them in 3D form with z = 0. */
 static PetscErrorCode ReadBox(PetscOptionItems *PetscOptionsObject, const PDScene *sc, const char *opt, const char *help, PetscReal box[6],
@@ -308,6 +354,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_mode", "Solution path: implicit (static) or explicit (dynamic relaxation)", PDModes, 2,
                          &mode, NULL));
   sc->explicit_mode = mode == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_failure_search",
+                         "Failure load of a load-controlled scene: explicit trials at constant loads, geometric bisection (implies explicit mode)",
+                         &sc->failure_search, NULL));
+  if (sc->failure_search) sc->explicit_mode = PETSC_TRUE;
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_model", "Spatial model", PDModelKinds, 3, &model, NULL));
   sc->model = (PDModelKind)model;
   sc->dim   = sc->model == PD_MODEL_3D ? 3 : 2;
@@ -455,6 +505,14 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                           &sc->out_stride, NULL));
     PetscCheck(sc->out_stride >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_output_stride: must be non-negative, got %" PetscInt_FMT,
                sc->out_stride);
+  }
+  if (sc->failure_search) {
+    PetscCheck(sc->region[sc->load_region].kind == PD_REGION_FORCE, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_failure_search: needs a load-controlled scene; the load region %s is of kind %s, not force",
+               sc->region[sc->load_region].option, PDRegionKinds[sc->region[sc->load_region].kind]);
+    PetscCheck(sc->damping > 0, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_failure_search: needs -pd_damping > 0 (a trial that survives must come to rest), got %g", (double)sc->damping);
+    PetscCall(ReadFailureSearch(PetscOptionsObject, comm, sc));
   }
   PetscCheck(sc->stop_cmod >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_stop_cmod: must be non-negative, got %g", (double)sc->stop_cmod);
   PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,

@@ -6,34 +6,11 @@
    constrained dofs move with the prescribed motion (their acceleration is lambda''(t) u_ref). Local
    damping -C v is integrated exactly after each step (v *= exp(-C dt / rho)), which keeps the split
    separable. Bond histories rise at every force evaluation: there is no limiter in dynamics. */
-#include "pd_solve.h"
-#include <petscts.h>
-
-typedef struct {
-  PDModel  *m;
-  PDRecord *rec;
-  IS        is_u, is_v;
-  Vec       mass;    /* nodal mass rho V per dof */
-  Vec       f_int;   /* work: internal force */
-  PetscReal t_ramp;  /* ramp duration */
-  PetscReal t_end;   /* ramp and hold */
-  PetscReal dt;      /* time step */
-  PetscInt  stride;  /* steps between curve rows */
-  PetscReal ke_max;  /* largest kinetic energy recorded (J) */
-  Vec       v_local; /* ghosted velocities, for the stability check */
-  PetscReal v_peak;  /* largest nodal velocity seen (m/s) */
-  PetscReal ds_peak; /* largest stretch gained by a bond in one step, at the checks */
-  Vec       u_prev;  /* displacement at the previous step */
-  Vec       f_ext;   /* applied forces and reactions at the last force evaluation */
-  PetscReal w_ext;   /* external work so far (J) */
-  PetscReal w_damp;  /* kinetic energy removed by damping so far (J) */
-  PetscBool stopped; /* the CMOD stop was reached */
-  PetscBool blew_up; /* non-finite or runaway state */
-} ExplicitCtx;
+#include "explicit.h"
 
 /* Smoothstep load factor and its second derivative at time t. */
-static void Ramp(const ExplicitCtx *c, PetscReal t, PetscReal *lam, PetscReal *lam_tt) {
-  const PetscReal L = c->m->scene->lambda_max, T = c->t_ramp, g = PetscMin(t / T, 1);
+static void Ramp(const PDExplicit *c, PetscReal t, PetscReal *lam, PetscReal *lam_tt) {
+  const PetscReal L = c->lambda_max, T = c->t_ramp, g = PetscMin(t / T, 1);
   *lam    = L * g * g * g * (10 - 15 * g + 6 * g * g);
   *lam_tt = t < T ? L / (T * T) * (60 * g - 180 * g * g + 120 * g * g * g) : 0;
 }
@@ -43,7 +20,7 @@ static void Ramp(const ExplicitCtx *c, PetscReal t, PetscReal *lam, PetscReal *l
    stable step grows the highest-frequency mode by a factor per step. Measured on the half-notched beam at
    dx = 10 mm: at most 3.6e-6 per step up to 1.9 times the Eq. 4.6 estimate, 5.6e-4 at 2.0 (whose damage
    then ran away without the state blowing up); the limit is 1e-4, about the cracking strain of concrete. */
-static PetscErrorCode MaxStretchPerStep(ExplicitCtx *c, Vec v, PetscReal *ds) {
+static PetscErrorCode MaxStretchPerStep(PDExplicit *c, Vec v, PetscReal *ds) {
   PDModel           *m  = c->m;
   const PDBonds     *bd = m->bonds;
   const PetscInt     bs = m->bs;
@@ -108,7 +85,7 @@ static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec v, Vec dudt, void *ctx
 
 /* a = (lambda f_ref - f_int(u)) / (rho V) on free dofs, lambda'' u_ref on constrained ones. */
 static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec u, Vec dvdt, void *ctx) {
-  ExplicitCtx       *c = (ExplicitCtx *)ctx;
+  PDExplicit        *c = (PDExplicit *)ctx;
   PDModel           *m = c->m;
   PetscReal          lam, lam_tt;
   PetscScalar       *a, *F;
@@ -150,7 +127,7 @@ static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec u, Vec dvdt, void *ctx
    Verlet in PETSc is drift-kick-drift with that evaluation at the half step, so this midpoint rule is
    the integrator's own work and the balance closes to round-off on smooth problems; for schemes with
    other stage layouts it is first-order accurate. */
-static PetscErrorCode AddExternalWork(ExplicitCtx *c, Vec u) {
+static PetscErrorCode AddExternalWork(PDExplicit *c, Vec u) {
   PetscScalar dw;
 
   PetscFunctionBeginUser;
@@ -163,11 +140,11 @@ static PetscErrorCode AddExternalWork(ExplicitCtx *c, Vec u) {
 
 /* After each step: external work, damping, a curve row every stride steps, the stop and stability checks. */
 static PetscErrorCode PostStep(TS ts) {
-  ExplicitCtx *c;
-  PDModel     *m;
-  Vec          X, u, v;
-  PetscInt     step;
-  PetscReal    t, norm, ds = 0;
+  PDExplicit *c;
+  PDModel    *m;
+  Vec         X, u, v;
+  PetscInt    step;
+  PetscReal   t, norm, ds = 0;
 
   PetscFunctionBeginUser;
   PetscCall(TSGetApplicationContext(ts, &c));
@@ -186,6 +163,13 @@ static PetscErrorCode PostStep(TS ts) {
     c->blew_up = PETSC_TRUE;
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);
+  }
+  if (c->monitor && step % 10 == 0) { /* before damping and rows, which reuse f_int */
+    PetscBool stop = PETSC_FALSE;
+    PetscCall(VecGetSubVector(X, c->is_v, &v));
+    PetscCall(c->monitor(c, step, t, v, &stop));
+    PetscCall(VecRestoreSubVector(X, c->is_v, &v));
+    if (stop) c->stopped = PETSC_TRUE;
   }
   PetscCall(VecGetSubVector(X, c->is_u, &u));
   PetscCall(AddExternalWork(c, u));
@@ -210,7 +194,7 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(VecRestoreArray(v, &vv));
     PetscCall(VecRestoreSubVector(X, c->is_v, &v));
   }
-  if (step % c->stride == 0 || t >= c->t_end - 0.5 * c->dt) { /* every stride steps, and the last */
+  if (step % c->stride == 0 || t >= c->t_end - 0.5 * c->dt || c->stopped) { /* every stride steps, and the last */
     PDCurveRow     row;
     PetscLogDouble now;
     PetscScalar    ke;
@@ -237,112 +221,152 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
-    if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = PETSC_TRUE;
+    if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;
     PetscCall(PDProgress(m->lat->comm, m->scene, &row, c->stopped));
-    if (c->stopped) PetscCall(PDFieldsWrite(m, c->rec, step, u));
+    if (c->cmod_reached) PetscCall(PDFieldsWrite(m, c->rec, step, u));
     PetscCall(VecRestoreSubVector(X, c->is_v, &v));
     PetscCall(VecRestoreSubVector(X, c->is_u, &u));
-    if (c->stopped) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   }
+  if (c->stopped) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDExplicitRun(PDModel *m, PDRecord *rec) {
-  const PDScene    *sc   = m->scene;
-  MPI_Comm          comm = m->lat->comm;
-  ExplicitCtx       c;
-  TS                ts;
-  Vec               X;
-  PetscInt          n = m->bs * m->lat->nowned, rstart, nsteps;
-  PetscReal         dt_stable, tend;
-  TSConvergedReason reason;
+PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
+  const PDScene *sc   = m->scene;
+  MPI_Comm       comm = m->lat->comm;
+  PetscInt       n    = m->bs * m->lat->nowned, rstart;
+  PetscReal      dt_stable;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscMemzero(&c, sizeof c));
-  c.m   = m;
-  c.rec = rec;
+  PetscCall(PetscMemzero(c, sizeof *c));
+  c->m   = m;
+  c->rec = rec;
   /* dynamics has no limiter: every level is open, and histories rise with each force evaluation */
   for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_BROKEN;
   m->commit_history = m->softening;
   PetscCall(StableTimeStep(m, &dt_stable));
-  c.dt     = sc->dt_safety * dt_stable;
-  c.t_ramp = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c.dt;
-  tend     = c.t_ramp + sc->hold_time;
-  c.t_end  = tend;
-  nsteps   = (PetscInt)PetscCeilReal(tend / c.dt);
-  c.stride = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, nsteps / 400);
-  PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
-                        (double)dt_stable, (double)c.dt, (double)sc->dt_safety, (double)c.t_ramp, nsteps));
+  c->dt     = sc->dt_safety * dt_stable;
+  c->t_ramp = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c->dt;
+  /* a failure search trial holds its load, by default as long as the ramp took */
+  c->t_end       = c->t_ramp + (sc->failure_search && sc->hold_time == 0 ? c->t_ramp : sc->hold_time);
+  c->nsteps      = (PetscInt)PetscCeilReal(c->t_end / c->dt);
+  c->stride      = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, c->nsteps / 400);
   rec->dt_stable = dt_stable;
-  rec->dt        = c.dt;
+  rec->dt        = c->dt;
+  PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
+                        (double)dt_stable, (double)c->dt, (double)sc->dt_safety, (double)c->t_ramp, c->nsteps));
 
-  PetscCall(VecDuplicate(m->f_ref, &c.mass));
-  PetscCall(VecDuplicate(m->f_ref, &c.f_int));
+  PetscCall(VecDuplicate(m->f_ref, &c->mass));
+  PetscCall(VecDuplicate(m->f_ref, &c->f_int));
+  PetscCall(VecDuplicate(m->f_ref, &c->u_prev));
+  PetscCall(VecDuplicate(m->f_ref, &c->f_ext));
   {
     PetscScalar *ms;
-    PetscCall(VecGetArray(c.mass, &ms));
+    PetscCall(VecGetArray(c->mass, &ms));
     for (PetscInt k = 0; k < n; k++) ms[k] = sc->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
-    PetscCall(VecRestoreArray(c.mass, &ms));
+    PetscCall(VecRestoreArray(c->mass, &ms));
   }
-  PetscCall(VecDuplicate(m->u_local, &c.v_local));
-  PetscCall(VecDuplicate(m->f_ref, &c.u_prev));
-  PetscCall(VecDuplicate(m->f_ref, &c.f_ext));
-  PetscCall(VecZeroEntries(c.u_prev));
-  PetscCall(VecZeroEntries(c.f_ext));
-  PetscCall(VecCreateMPI(comm, 2 * n, PETSC_DETERMINE, &X));
-  PetscCall(VecGetOwnershipRange(X, &rstart, NULL));
-  PetscCall(ISCreateStride(comm, n, rstart, 1, &c.is_u));
-  PetscCall(ISCreateStride(comm, n, rstart + n, 1, &c.is_v));
-  PetscCall(VecZeroEntries(X));
+  PetscCall(VecDuplicate(m->u_local, &c->v_local));
+  PetscCall(VecCreateMPI(comm, 2 * n, PETSC_DETERMINE, &c->X));
+  PetscCall(VecGetOwnershipRange(c->X, &rstart, NULL));
+  PetscCall(ISCreateStride(comm, n, rstart, 1, &c->is_u));
+  PetscCall(ISCreateStride(comm, n, rstart + n, 1, &c->is_v));
 
-  PetscCall(TSCreate(comm, &ts));
-  PetscCall(TSSetApplicationContext(ts, &c));
-  PetscCall(TSSetType(ts, TSBASICSYMPLECTIC));
-  PetscCall(TSBasicSymplecticSetType(ts, TSBASICSYMPLECTICVELVERLET));
-  PetscCall(TSRHSSplitSetIS(ts, "position", c.is_u));
-  PetscCall(TSRHSSplitSetIS(ts, "momentum", c.is_v));
-  PetscCall(TSRHSSplitSetRHSFunction(ts, "position", NULL, RHSPosition, &c));
-  PetscCall(TSRHSSplitSetRHSFunction(ts, "momentum", NULL, RHSMomentum, &c));
-  PetscCall(TSSetTimeStep(ts, c.dt));
-  PetscCall(TSSetMaxTime(ts, tend));
-  PetscCall(TSSetMaxSteps(ts, nsteps + 1));
-  PetscCall(TSSetExactFinalTime(ts, TS_EXACTFINALTIME_MATCHSTEP));
-  PetscCall(TSSetPostStep(ts, PostStep));
-  PetscCall(TSSetFromOptions(ts));
-  PetscCall(TSSolve(ts, X));
-  PetscCall(TSGetConvergedReason(ts, &reason));
-  PetscCall(TSGetStepNumber(ts, &rec->time_steps));
-  rec->ke_max    = c.ke_max;
-  rec->v_peak    = c.v_peak;
-  rec->ds_peak   = c.ds_peak;
+  PetscCall(TSCreate(comm, &c->ts));
+  PetscCall(TSSetApplicationContext(c->ts, c));
+  PetscCall(TSSetType(c->ts, TSBASICSYMPLECTIC));
+  PetscCall(TSBasicSymplecticSetType(c->ts, TSBASICSYMPLECTICVELVERLET));
+  PetscCall(TSRHSSplitSetIS(c->ts, "position", c->is_u));
+  PetscCall(TSRHSSplitSetIS(c->ts, "momentum", c->is_v));
+  PetscCall(TSRHSSplitSetRHSFunction(c->ts, "position", NULL, RHSPosition, c));
+  PetscCall(TSRHSSplitSetRHSFunction(c->ts, "momentum", NULL, RHSMomentum, c));
+  PetscCall(TSSetExactFinalTime(c->ts, TS_EXACTFINALTIME_MATCHSTEP));
+  PetscCall(TSSetPostStep(c->ts, PostStep));
+  PetscCall(TSSetTimeStep(c->ts, c->dt));
+  PetscCall(TSSetMaxTime(c->ts, c->t_end));
+  PetscCall(TSSetMaxSteps(c->ts, c->nsteps + 1));
+  PetscCall(TSSetFromOptions(c->ts));
+  PetscFunctionReturn(0);
+}
+
+/* Integrates from rest with the load factor ramped to lambda_max, bond histories cleared: each failure
+   search trial starts from the undamaged body. */
+PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
+  PDModel *m = c->m;
+
+  PetscFunctionBeginUser;
+  c->lambda_max = lambda_max;
+  c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
+  c->stopped = c->cmod_reached = c->blew_up = PETSC_FALSE;
+  if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
+  m->broken     = 0;
+  c->rec->nrows = 0;
+  PetscCall(VecZeroEntries(c->X));
+  PetscCall(VecZeroEntries(c->u_prev));
+  PetscCall(VecZeroEntries(c->f_ext));
+  PetscCall(TSSetTime(c->ts, 0));
+  PetscCall(TSSetStepNumber(c->ts, 0));
+  PetscCall(TSSetTimeStep(c->ts, c->dt));
+  PetscCall(TSSetConvergedReason(c->ts, TS_CONVERGED_ITERATING));
+  PetscCall(TSSolve(c->ts, c->X));
+  PetscCall(TSGetConvergedReason(c->ts, &c->reason));
+  PetscCall(TSGetStepNumber(c->ts, &c->rec->time_steps));
+  c->rec->ke_max  = c->ke_max;
+  c->rec->v_peak  = c->v_peak;
+  c->rec->ds_peak = c->ds_peak;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDExplicitDestroy(PDExplicit *c) {
+  PetscFunctionBeginUser;
+  PetscCall(TSDestroy(&c->ts));
+  PetscCall(ISDestroy(&c->is_u));
+  PetscCall(ISDestroy(&c->is_v));
+  PetscCall(VecDestroy(&c->X));
+  PetscCall(VecDestroy(&c->mass));
+  PetscCall(VecDestroy(&c->f_int));
+  PetscCall(VecDestroy(&c->v_local));
+  PetscCall(VecDestroy(&c->u_prev));
+  PetscCall(VecDestroy(&c->f_ext));
+  PetscFunctionReturn(0);
+}
+
+/* Status of an integration that did not blow up and was not stopped by a monitor. */
+PetscErrorCode PDExplicitStatus(PDExplicit *c) {
+  PDRecord *rec = c->rec;
+
+  PetscFunctionBeginUser;
   rec->converged = PETSC_TRUE;
-  if (c.blew_up) {
+  if (c->blew_up) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status,
                             "unstable: a bond gained a stretch of %.3g in one step by time step %" PetscInt_FMT
                             " (time step %.3g s, %.3g of the stable estimate)",
-                            (double)c.ds_peak, rec->time_steps, (double)c.dt, (double)sc->dt_safety));
-  } else if (c.stopped)
-    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
-  else if (reason < 0) {
+                            (double)c->ds_peak, rec->time_steps, (double)c->dt, (double)c->m->scene->dt_safety));
+  } else if (c->cmod_reached)
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)c->m->scene->stop_cmod));
+  else if (c->reason < 0) {
     rec->converged = PETSC_FALSE;
-    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "time integration stopped: %s", TSConvergedReasons[reason]));
-  } else {
-    Vec u;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "time integration stopped: %s", TSConvergedReasons[c->reason]));
+  } else
     PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
-    PetscCall(VecGetSubVector(X, c.is_u, &u));
-    PetscCall(PDFieldsWrite(m, rec, rec->time_steps, u));
-    PetscCall(VecRestoreSubVector(X, c.is_u, &u));
-  }
   PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "TS %s", "basicsymplectic"));
-  PetscCall(TSDestroy(&ts));
-  PetscCall(ISDestroy(&c.is_u));
-  PetscCall(ISDestroy(&c.is_v));
-  PetscCall(VecDestroy(&X));
-  PetscCall(VecDestroy(&c.mass));
-  PetscCall(VecDestroy(&c.f_int));
-  PetscCall(VecDestroy(&c.v_local));
-  PetscCall(VecDestroy(&c.u_prev));
-  PetscCall(VecDestroy(&c.f_ext));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDExplicitRun(PDModel *m, PDRecord *rec) {
+  PDExplicit c;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDExplicitCreate(m, rec, &c));
+  PetscCall(PDExplicitSolve(&c, m->scene->lambda_max));
+  PetscCall(PDExplicitStatus(&c));
+  if (rec->converged && !c.cmod_reached) {
+    Vec u;
+    PetscCall(VecGetSubVector(c.X, c.is_u, &u));
+    PetscCall(PDFieldsWrite(m, rec, rec->time_steps, u));
+    PetscCall(VecRestoreSubVector(c.X, c.is_u, &u));
+  }
+  PetscCall(PDExplicitDestroy(&c));
   PetscFunctionReturn(0);
 }

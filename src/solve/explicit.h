@@ -1,0 +1,44 @@
+/* The explicit integrator's state, shared by the reference path (explicit.c) and the failure search
+   (failure_search.c), which runs it repeatedly at different loads. */
+#pragma once
+#include "pd_solve.h"
+#include <petscts.h>
+
+typedef struct PDExplicit PDExplicit;
+/* Called every tenth time step with the velocities; setting *stop ends the integration. */
+typedef PetscErrorCode (*PDExplicitMonitor)(PDExplicit *, PetscInt step, PetscReal t, Vec v, PetscBool *stop);
+
+struct PDExplicit {
+  PDModel          *m;
+  PDRecord         *rec;
+  TS                ts;
+  Vec               X; /* [u; v] */
+  IS                is_u, is_v;
+  Vec               mass;         /* nodal mass rho V per dof */
+  Vec               f_int;        /* internal force at the last evaluation, then work */
+  Vec               f_ext;        /* applied forces and reactions at the last force evaluation */
+  Vec               u_prev;       /* displacement at the previous step */
+  Vec               v_local;      /* ghosted velocities, for the stability check */
+  PetscReal         lambda_max;   /* load factor at the end of the ramp */
+  PetscReal         t_ramp;       /* ramp duration */
+  PetscReal         t_end;        /* ramp and hold */
+  PetscReal         dt;           /* time step */
+  PetscInt          nsteps;       /* time steps to t_end */
+  PetscInt          stride;       /* steps between curve rows */
+  PetscReal         ke_max;       /* largest kinetic energy recorded (J) */
+  PetscReal         v_peak;       /* largest nodal velocity seen (m/s) */
+  PetscReal         ds_peak;      /* largest stretch gained by a bond in one step, at the checks */
+  PetscReal         w_ext;        /* external work so far (J) */
+  PetscReal         w_damp;       /* kinetic energy removed by damping so far, this rank (J) */
+  PetscBool         stopped;      /* the CMOD stop or the monitor ended the integration */
+  PetscBool         cmod_reached; /* the CMOD stop was reached */
+  PetscBool         blew_up;      /* non-finite or runaway state */
+  TSConvergedReason reason;
+  PDExplicitMonitor monitor;
+  void             *monitor_ctx;
+};
+
+PetscErrorCode PDExplicitCreate(PDModel *, PDRecord *, PDExplicit *);
+PetscErrorCode PDExplicitSolve(PDExplicit *, PetscReal lambda_max);
+PetscErrorCode PDExplicitStatus(PDExplicit *);
+PetscErrorCode PDExplicitDestroy(PDExplicit *);
