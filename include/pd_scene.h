@@ -108,6 +108,7 @@ typedef struct {
   PetscReal hold_time;  /* time after the ramp, at lambda_max (s) */
   PetscReal dt_safety;  /* fraction of the stable time step */
   PetscReal damping;    /* local damping C (kg/(m^3 s)) */
+  PetscBool adr;        /* adaptive dynamic relaxation: fictitious masses, unit steps, adaptive damping */
   PetscInt  out_stride; /* time steps between curve rows; 0: about 400 rows */
   /* failure search (-pd_failure_search): explicit trials held at constant loads, geometric bisection */
   PetscBool          failure_search;

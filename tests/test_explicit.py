@@ -54,6 +54,10 @@ def elastic():
     check(last["kinetic_J"] < 1e-9 * last["stored_J"], "at rest: kinetic %.2e J against stored %.4f J" % (last["kinetic_J"], last["stored_J"]))
     check(rel(last["external_J"], last["stored_J"] + last["damped_J"]) < 1e-6, "work %.6f J = stored %.6f J + damped %.6f J (1e-6)" % (
         last["external_J"], last["stored_J"], last["damped_J"]))
+    # adaptive dynamic relaxation: fictitious masses, unit steps, damping from the Rayleigh quotient;
+    # ramp 2,000 steps, then 10,000 held (measured: 1e-10 from the implicit deflection by 13,000 steps)
+    adr = run("cantilever", "-pd_dx", "0.02", "-pd_mode", "explicit", "-pd_adr", "-pd_ramp_time", "2000", "-pd_hold_time", "10000").curve[-1]["disp_m"]
+    check(rel(adr, imp) < 1e-6, "tip deflection: adaptive dynamic relaxation %.9e m; implicit %.9e m; difference %.1e < 1e-6" % (adr, imp, rel(adr, imp)))
     check(rel(exp, imp) < 0.005, "tip deflection: explicit, damped to rest, %.9e m; implicit %.9e m; difference %.1e < 0.5 %%" % (exp, imp, rel(exp, imp)))
 
 

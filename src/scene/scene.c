@@ -501,6 +501,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
     PetscCall(
         PDOptionReal(PetscOptionsObject, "-pd_damping", "Explicit: local damping C (kg/(m^3 s)), force density -C v", &sc->damping, NULL));
     PetscCheck(sc->damping >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_damping: must be non-negative, got %g", (double)sc->damping);
+    PetscCall(PDOptionBool(PetscOptionsObject, "-pd_adr",
+                           "Explicit: adaptive dynamic relaxation (fictitious masses, unit time steps, damping from the Rayleigh quotient); "
+                           "times are then counted in steps",
+                           &sc->adr, NULL));
+    PetscCheck(!(sc->adr && sc->damping > 0), comm, PETSC_ERR_USER_INPUT, "Option -pd_adr: sets its own damping; drop -pd_damping %g",
+               (double)sc->damping);
     PetscCall(PDOptionInt(PetscOptionsObject, "-pd_output_stride", "Explicit: time steps between curve rows; 0: about 400 rows",
                           &sc->out_stride, NULL));
     PetscCheck(sc->out_stride >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_output_stride: must be non-negative, got %" PetscInt_FMT,

@@ -74,6 +74,73 @@ static PetscErrorCode StableTimeStep(PDModel *m, PetscReal *dt) {
   PetscFunctionReturn(0);
 }
 
+/* Adaptive dynamic relaxation (Kilic and Madenci 2010): fictitious masses m = (1/4) sum_j |K_ij| / sf^2 with
+   a unit time step, the Gershgorin bound that keeps central differences stable (sf = -pd_dt_safety);
+   K is the elastic bond stiffness, which bounds the secant and consistent tangents of every law. */
+static PetscErrorCode AdrMass(PDModel *m, Vec mass) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscInt   bs  = m->bs;
+  const PetscReal  sf  = m->scene->dt_safety;
+  PetscScalar     *ms;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(mass));
+  PetscCall(VecGetArray(mass, &ms));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e];
+    PetscReal      d[3] = {0, 0, 0}, L = 0, sum = 0;
+    for (PetscInt a = 0; a < bs; a++) {
+      d[a] = lat->x[3 * j + a] - lat->x[3 * i + a];
+      L += d[a] * d[a];
+    }
+    L = PetscSqrtReal(L);
+    for (PetscInt a = 0; a < bs; a++) sum += PetscAbsReal(d[a]) / L;
+    /* row a of the bond block (k e e^T) sums to k |e_a| sum_b |e_b|, on the diagonal and off it */
+    for (PetscInt a = 0; a < bs; a++) {
+      const PetscReal r = 2 * bd->coef[e] / L * PetscAbsReal(d[a]) / L * sum / (4 * sf * sf);
+      ms[bs * i + a] += r;
+      if (j < lat->nowned) ms[bs * j + a] += r;
+    }
+  }
+  for (PetscInt k = 0; k < bs * lat->nowned; k++)
+    if (PetscRealPart(ms[k]) == 0) ms[k] = 1; /* a dof without bonds: any mass, it carries no force */
+  PetscCall(VecRestoreArray(mass, &ms));
+  PetscFunctionReturn(0);
+}
+
+/* ADR damping from the local stiffness estimate k_i = -(R_i - R_i,prev) / (m_i (u_i - u_i,prev)) between
+   two force evaluations (R the out-of-balance force): c = 2 sqrt(sum u_i^2 k_i / sum u_i^2), the critical
+   damping of the mode the displacement is made of; 0 when the estimate is not positive, at most 2. */
+static PetscErrorCode AdrDamping(PDExplicit *c, Vec u, const PetscScalar *f, const PetscScalar *fx, const PetscScalar *ms) {
+  PDModel           *m = c->m;
+  const PetscScalar *uu, *F;
+  PetscScalar       *rp, *up;
+  PetscReal          loc[2] = {0, 0}, glob[2];
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(u, &uu));
+  PetscCall(VecGetArrayRead(c->f_ext, &F));
+  PetscCall(VecGetArray(c->adr_r, &rp));
+  PetscCall(VecGetArray(c->adr_u, &up));
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) {
+    const PetscReal r = PetscRealPart(F[k] - f[k]), du = PetscRealPart(uu[k] - up[k]);
+    if (PetscRealPart(fx[k]) == 0 && du != 0) {
+      loc[0] += PetscRealPart(uu[k] * uu[k]) * -(r - PetscRealPart(rp[k])) / (PetscRealPart(ms[k]) * du);
+      loc[1] += PetscRealPart(uu[k] * uu[k]);
+    }
+    rp[k] = r;
+    up[k] = uu[k];
+  }
+  PetscCall(VecRestoreArray(c->adr_u, &up));
+  PetscCall(VecRestoreArray(c->adr_r, &rp));
+  PetscCall(VecRestoreArrayRead(c->f_ext, &F));
+  PetscCall(VecRestoreArrayRead(u, &uu));
+  PetscCall(MPIU_Allreduce(loc, glob, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
+  c->adr_c = (glob[0] > 0 && glob[1] > 0) ? PetscMin(2, 2 * PetscSqrtReal(glob[0] / glob[1])) : 0;
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode RHSPosition(TS ts, PetscReal t, Vec v, Vec dudt, void *ctx) {
   PetscFunctionBeginUser;
   (void)ts;
@@ -113,6 +180,7 @@ static PetscErrorCode RHSMomentum(TS ts, PetscReal t, Vec u, Vec dvdt, void *ctx
     }
   }
   PetscCall(VecRestoreArray(c->f_ext, &F));
+  if (m->scene->adr) PetscCall(AdrDamping(c, u, f, fx, ms));
   PetscCall(VecRestoreArrayRead(c->mass, &ms));
   PetscCall(VecRestoreArrayRead(m->fixed, &fx));
   PetscCall(VecRestoreArrayRead(m->u_ref, &ur));
@@ -174,7 +242,7 @@ static PetscErrorCode PostStep(TS ts) {
   PetscCall(VecGetSubVector(X, c->is_u, &u));
   PetscCall(AddExternalWork(c, u));
   PetscCall(VecRestoreSubVector(X, c->is_u, &u));
-  if (m->scene->damping > 0) { /* free dofs only: constrained ones follow the prescribed motion */
+  if (m->scene->damping > 0 || m->scene->adr) { /* free dofs only: constrained ones follow the prescribed motion */
     PetscScalar       *vv;
     const PetscScalar *fx, *ms;
     PetscReal          wd = 0;
@@ -184,7 +252,8 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(VecGetArrayRead(c->mass, &ms));
     for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++)
       if (PetscRealPart(fx[k]) == 0) {
-        const PetscReal decay = PetscExpReal(-m->scene->damping * c->dt * m->lat->cell_volume / PetscRealPart(ms[k]));
+        const PetscReal decay =
+            PetscExpReal(-(m->scene->adr ? c->adr_c : m->scene->damping * m->lat->cell_volume / PetscRealPart(ms[k])) * c->dt);
         wd += 0.5 * PetscRealPart(ms[k]) * PetscRealPart(vv[k] * vv[k]) * (1 - decay * decay);
         vv[k] *= decay;
       }
@@ -245,7 +314,7 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_BROKEN;
   m->commit_history = m->softening;
   PetscCall(StableTimeStep(m, &dt_stable));
-  c->dt     = sc->dt_safety * dt_stable;
+  c->dt     = sc->adr ? 1 : sc->dt_safety * dt_stable; /* dynamic relaxation counts time in steps */
   c->t_ramp = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c->dt;
   /* a failure search trial holds its load, by default as long as the ramp took */
   c->t_end       = c->t_ramp + (sc->failure_search && sc->hold_time == 0 ? c->t_ramp : sc->hold_time);
@@ -253,14 +322,23 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   c->stride      = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, c->nsteps / 400);
   rec->dt_stable = dt_stable;
   rec->dt        = c->dt;
-  PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
-                        (double)dt_stable, (double)c->dt, (double)sc->dt_safety, (double)c->t_ramp, c->nsteps));
+  if (sc->adr)
+    PetscCall(PetscPrintf(
+        comm, "  explicit: adaptive dynamic relaxation, unit steps, masses at %g of the stability bound, ramp %" PetscInt_FMT " steps\n",
+        (double)sc->dt_safety, (PetscInt)c->t_ramp));
+  else
+    PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
+                          (double)dt_stable, (double)c->dt, (double)sc->dt_safety, (double)c->t_ramp, c->nsteps));
 
   PetscCall(VecDuplicate(m->f_ref, &c->mass));
   PetscCall(VecDuplicate(m->f_ref, &c->f_int));
   PetscCall(VecDuplicate(m->f_ref, &c->u_prev));
   PetscCall(VecDuplicate(m->f_ref, &c->f_ext));
-  {
+  if (sc->adr) {
+    PetscCall(AdrMass(m, c->mass));
+    PetscCall(VecDuplicate(m->f_ref, &c->adr_r));
+    PetscCall(VecDuplicate(m->f_ref, &c->adr_u));
+  } else {
     PetscScalar *ms;
     PetscCall(VecGetArray(c->mass, &ms));
     for (PetscInt k = 0; k < n; k++) ms[k] = sc->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
@@ -304,6 +382,11 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   PetscCall(VecZeroEntries(c->X));
   PetscCall(VecZeroEntries(c->u_prev));
   PetscCall(VecZeroEntries(c->f_ext));
+  c->adr_c = 0;
+  if (c->adr_r) {
+    PetscCall(VecZeroEntries(c->adr_r));
+    PetscCall(VecZeroEntries(c->adr_u));
+  }
   PetscCall(TSSetTime(c->ts, 0));
   PetscCall(TSSetStepNumber(c->ts, 0));
   PetscCall(TSSetTimeStep(c->ts, c->dt));
@@ -328,6 +411,8 @@ PetscErrorCode PDExplicitDestroy(PDExplicit *c) {
   PetscCall(VecDestroy(&c->v_local));
   PetscCall(VecDestroy(&c->u_prev));
   PetscCall(VecDestroy(&c->f_ext));
+  PetscCall(VecDestroy(&c->adr_r));
+  PetscCall(VecDestroy(&c->adr_u));
   PetscFunctionReturn(0);
 }
 

@@ -33,6 +33,8 @@ struct PDExplicit {
   PetscBool         stopped;      /* the CMOD stop or the monitor ended the integration */
   PetscBool         cmod_reached; /* the CMOD stop was reached */
   PetscBool         blew_up;      /* non-finite or runaway state */
+  Vec               adr_r, adr_u; /* dynamic relaxation: out-of-balance force and displacement at the last evaluation */
+  PetscReal         adr_c;        /* dynamic relaxation: damping coefficient of the step (1/step) */
   TSConvergedReason reason;
   PDExplicitMonitor monitor;
   void             *monitor_ctx;
