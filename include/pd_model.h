@@ -15,6 +15,7 @@ typedef struct {
   PetscReal        force_scale; /* size of the load at lambda = 1 (N), for absolute tolerances */
   Vec              u_local;     /* ghosted work copy of the displacement */
   Vec              f_local;     /* ghosted work vector for internal forces */
+  Vec              x_local;     /* ghosted work vector for tangent products (created on first use) */
   PetscReal       *ka, *kb;     /* per-bond tangent scalars; NULL while the tangent is constant */
   PDLaw            law[PD_MAX_MATERIALS];
   PetscBool        softening; /* some bond law softens or breaks: bonds carry history */
@@ -62,5 +63,6 @@ PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscIn
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelCountDamage(PDModel *);
+PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

@@ -15,7 +15,8 @@ typedef enum { PD_INFLUENCE_CONSTANT, PD_INFLUENCE_CONICAL, PD_INFLUENCE_QUARTIC
 typedef enum { PD_KINEMATICS_SMALL, PD_KINEMATICS_FINITE } PDKinematics;
 typedef enum { PD_LAW_ELASTIC, PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR } PDLawKind;
 typedef enum { PD_STRETCH_EXACT, PD_STRETCH_MODIFIED } PDStretch;
-typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE } PDControl;
+typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE, PD_CONTROL_ARCLENGTH, PD_CONTROL_AUTO } PDControl;
+typedef enum { PD_ARC_SPHERICAL, PD_ARC_CYLINDRICAL, PD_ARC_CMOD, PD_ARC_DISSIPATION } PDArcType;
 typedef enum { PD_TANGENT_CONSISTENT, PD_TANGENT_SECANT } PDTangent;
 typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
 typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
@@ -27,6 +28,7 @@ extern const char *const PDKinematicsNames[];
 extern const char *const PDLawNames[];
 extern const char *const PDStretchNames[];
 extern const char *const PDControlNames[];
+extern const char *const PDArcTypes[];
 extern const char *const PDTangentNames[];
 extern const char *const PDShapes[];
 extern const char *const PDRegionKinds[];
@@ -84,24 +86,30 @@ typedef struct {
   PDStretch    stretch;
   PetscBool    sc_correction; /* per-bond critical stretch from lambda_ij c */
   PDControl    control;
-  PDTangent    tangent;
-  PetscInt     limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
-  PetscInt     limiter_stage_its; /* Newton iterations between grants while events are pending */
-  PetscReal    lambda_max;        /* end of the load path */
-  PetscReal    dlambda_min, dlambda_max;
-  PetscReal    stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
-  PetscInt     nmaterials, nnotches, nregions;
-  PDMaterial   material[PD_MAX_MATERIALS];
-  PDNotch      notch[PD_MAX_NOTCHES];
-  PDRegion     region[PD_MAX_REGIONS];
-  PetscInt     load_region; /* region whose force or reaction is the curve's load */
-  PetscInt     disp_region; /* region whose mean displacement is the curve's displacement */
-  PetscBool    has_cmod;
-  PetscReal    cmod[6]; /* two gauge points */
-  PetscInt     steps;   /* load steps */
-  PetscInt     fields_every;
-  PetscBool    progress;
-  PetscBool    dry_run; /* build the scene and report it, do not solve */
+  /* path following (-pd_control arclength|auto) */
+  PDArcType  arc_type;       /* constraint */
+  PetscReal  arc_initial;    /* first arc length (units of the constraint); 0: from the first load step */
+  PetscReal  arc_growth;     /* largest arc length over the first one */
+  PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
+  PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
+  PDTangent  tangent;
+  PetscInt   limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
+  PetscInt   limiter_stage_its; /* Newton iterations between grants while events are pending */
+  PetscReal  lambda_max;        /* end of the load path */
+  PetscReal  dlambda_min, dlambda_max;
+  PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
+  PetscInt   nmaterials, nnotches, nregions;
+  PDMaterial material[PD_MAX_MATERIALS];
+  PDNotch    notch[PD_MAX_NOTCHES];
+  PDRegion   region[PD_MAX_REGIONS];
+  PetscInt   load_region; /* region whose force or reaction is the curve's load */
+  PetscInt   disp_region; /* region whose mean displacement is the curve's displacement */
+  PetscBool  has_cmod;
+  PetscReal  cmod[6]; /* two gauge points */
+  PetscInt   steps;   /* load steps */
+  PetscInt   fields_every;
+  PetscBool  progress;
+  PetscBool  dry_run; /* build the scene and report it, do not solve */
   /* explicit path (-pd_mode explicit) */
   PetscBool explicit_mode;
   PetscReal ramp_time;  /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */

@@ -158,6 +158,34 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
   PetscFunctionReturn(0);
 }
 
+/* y = K x from the bond scalars, on every dof (no elimination of constrained ones): per bond the block
+   B = ka e e^T + kb I acts on x_j - x_i, +B on node j and -B on node i. */
+PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
+                                        PetscScalar *y) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscInt   bs  = m->bs;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(y, bs * lat->nlocal));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e];
+    PetscReal      dir[3], L0, L, s, q, d[3] = {0, 0, 0}, ed = 0;
+    BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
+    const PetscReal a = ka ? ka[e] : bd->coef[e] / L0, b = kb ? kb[e] : 0;
+    for (PetscInt r = 0; r < bs; r++) {
+      d[r] = PetscRealPart(x[bs * j + r] - x[bs * i + r]);
+      ed += dir[r] * d[r];
+    }
+    for (PetscInt r = 0; r < bs; r++) {
+      const PetscReal t = a * ed * dir[r] + b * d[r];
+      y[bs * i + r] -= t;
+      y[bs * j + r] += t;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Gathers one stiffness row per owned node from the bond scalars. Constrained dofs are eliminated
    symmetrically: their rows and columns are zero but for bc_scale on the diagonal. A free direction
    left without stiffness (every bond of the node broken) gets a small diagonal so that the matrix stays

@@ -7,6 +7,8 @@ PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal 
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
 PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
+PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
+                                        PetscScalar *y);
 PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
 PetscReal      PDModelBondDamage(const PDModel *, PetscInt e);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);

@@ -285,6 +285,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscFunctionBeginUser;
   PetscCall(VecDestroy(&m->u_local));
   PetscCall(VecDestroy(&m->f_local));
+  PetscCall(VecDestroy(&m->x_local));
   PetscCall(VecDestroy(&m->f_ref));
   PetscCall(VecDestroy(&m->u_ref));
   PetscCall(VecDestroy(&m->fixed));
@@ -438,6 +439,37 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
     PetscCall(VecDot(u, m->cmod_pattern, &v));
     *cmod = PetscRealPart(v);
   }
+  PetscFunctionReturn(0);
+}
+
+/* y = K(u) x on every dof, constrained ones included (no elimination): the tangent whose bond scalars
+   the last PDModelJacobian computed (at the same u), or the linearised micromodulus of a model whose
+   tangent is constant. Path following needs the coupling of free and constrained dofs, which the
+   assembled matrix drops. */
+PetscErrorCode PDModelTangentApply(PDModel *m, Vec u, Vec x, Vec y) {
+  const PetscScalar *ul, *xl;
+  PetscScalar       *yl, *yy;
+  Vec                uloc, xloc, yloc;
+
+  PetscFunctionBeginUser;
+  if (!m->x_local) PetscCall(VecDuplicate(m->u_local, &m->x_local));
+  PetscCall(VecCopy(x, m->x_local));
+  PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
+  PetscCall(VecGhostGetLocalForm(m->f_local, &yloc));
+  PetscCall(VecGetArrayRead(xloc, &xl));
+  PetscCall(VecGetArray(yloc, &yl));
+  PetscCall(PDModelTangentApplyLocal(m, ul, m->ka, m->kb, xl, yl));
+  PetscCall(VecGetArray(y, &yy));
+  PetscCall(PetscArraycpy(yy, yl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
+  PetscCall(VecRestoreArray(y, &yy));
+  PetscCall(VecRestoreArray(yloc, &yl));
+  PetscCall(VecRestoreArrayRead(xloc, &xl));
+  PetscCall(VecGhostRestoreLocalForm(m->f_local, &yloc));
+  PetscCall(VecGhostRestoreLocalForm(m->x_local, &xloc));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscFunctionReturn(0);
 }
 

@@ -9,7 +9,8 @@ const char *const        PDInfluences[]      = {"constant", "conical", "quartic"
 const char *const        PDKinematicsNames[] = {"small", "finite"};
 const char *const        PDLawNames[]        = {"elastic", "linear", "bilinear", "trilinear", "nonlinear"};
 const char *const        PDStretchNames[]    = {"exact", "modified"};
-const char *const        PDControlNames[]    = {"displacement", "force"};
+const char *const        PDControlNames[]    = {"displacement", "force", "arclength", "auto"};
+const char *const        PDArcTypes[]        = {"spherical", "cylindrical", "cmod", "dissipation"};
 const char *const        PDTangentNames[]    = {"consistent", "secant"};
 const char *const        PDShapes[]          = {"box", "cylinder"};
 const char *const        PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
@@ -28,11 +29,11 @@ static PetscErrorCode ReadFailureSearch(PetscOptionItems *PetscOptionsObject, MP
   sc->failure_ftol   = 0.05;
   sc->failure_dtol   = 1e-5;
   sc->failure_window = 0;
-  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_failure_criterion", "Failure search: when a trial has failed or converged", PDFailureCriteria, 3,
-                         &crit, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_failure_criterion", "Failure search: when a trial has failed or converged",
+                         PDFailureCriteria, 3, &crit, NULL));
   sc->failure_criterion = (PDFailureCriterion)crit;
-  PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_failure_bracket", "Failure search: first lower,upper test loads (N)", sc->failure_bracket,
-                              &n, &set));
+  PetscCall(PDOptionRealArray(PetscOptionsObject, "-pd_failure_bracket", "Failure search: first lower,upper test loads (N)",
+                              sc->failure_bracket, &n, &set));
   PetscCheck(!set || (n == 2 && sc->failure_bracket[0] > 0 && sc->failure_bracket[1] > sc->failure_bracket[0]), comm, PETSC_ERR_USER_INPUT,
              "Option -pd_failure_bracket: needs two loads 0 < lower < upper, got %" PetscInt_FMT " value(s) %g,%g", n,
              (double)sc->failure_bracket[0], (double)(n > 1 ? sc->failure_bracket[1] : 0));
@@ -48,14 +49,17 @@ static PetscErrorCode ReadFailureSearch(PetscOptionItems *PetscOptionsObject, MP
   PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_force_tol",
                          "Failure search (force decay): converged when out-of-balance over applied force at the loaded nodes is below this",
                          &sc->failure_ftol, NULL));
-  PetscCheck(sc->failure_ftol > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_force_tol: must be positive, got %g", (double)sc->failure_ftol);
+  PetscCheck(sc->failure_ftol > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_force_tol: must be positive, got %g",
+             (double)sc->failure_ftol);
   PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_damage_tol",
                          "Failure search (bond damage): fraction of bonds broken per time step below which damage counts as still",
                          &sc->failure_dtol, NULL));
-  PetscCheck(sc->failure_dtol > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_damage_tol: must be positive, got %g", (double)sc->failure_dtol);
-  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_failure_window",
-                         "Failure search (bond damage): time (s) damage must stay still, or load and velocity stay aligned; 0: a quarter of the ramp",
-                         &sc->failure_window, NULL));
+  PetscCheck(sc->failure_dtol > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_damage_tol: must be positive, got %g",
+             (double)sc->failure_dtol);
+  PetscCall(PDOptionReal(
+      PetscOptionsObject, "-pd_failure_window",
+      "Failure search (bond damage): time (s) damage must stay still, or load and velocity stay aligned; 0: a quarter of the ramp",
+      &sc->failure_window, NULL));
   PetscCheck(sc->failure_window >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_failure_window: must be non-negative, got %g",
              (double)sc->failure_window);
   PetscFunctionReturn(0);
@@ -354,9 +358,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_mode", "Solution path: implicit (static) or explicit (dynamic relaxation)", PDModes, 2,
                          &mode, NULL));
   sc->explicit_mode = mode == 1 ? PETSC_TRUE : PETSC_FALSE;
-  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_failure_search",
-                         "Failure load of a load-controlled scene: explicit trials at constant loads, geometric bisection (implies explicit mode)",
-                         &sc->failure_search, NULL));
+  PetscCall(PDOptionBool(
+      PetscOptionsObject, "-pd_failure_search",
+      "Failure load of a load-controlled scene: explicit trials at constant loads, geometric bisection (implies explicit mode)",
+      &sc->failure_search, NULL));
   if (sc->failure_search) sc->explicit_mode = PETSC_TRUE;
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_model", "Spatial model", PDModelKinds, 3, &model, NULL));
   sc->model = (PDModelKind)model;
@@ -467,12 +472,46 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   {
     PetscInt  v = sc->region[sc->load_region].kind == PD_REGION_FORCE ? PD_CONTROL_FORCE : PD_CONTROL_DISPLACEMENT, t = sc->tangent;
     PetscBool set;
-    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_control", "Path control: displacement or force (must match the load region's kind)",
-                           PDControlNames, 2, &v, &set));
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_control",
+                           "Path control: displacement or force (must match the load region's kind), arclength (path following), auto "
+                           "(the region's control until bonds soften, then path following)",
+                           PDControlNames, 4, &v, &set));
     sc->control = (PDControl)v;
-    PetscCheck((sc->control == PD_CONTROL_FORCE) == (sc->region[sc->load_region].kind == PD_REGION_FORCE), comm, PETSC_ERR_USER_INPUT,
-               "Option -pd_control: '%s' does not match the load region %s, which is a %s region", PDControlNames[sc->control],
-               sc->region[sc->load_region].option, PDRegionKinds[sc->region[sc->load_region].kind]);
+    PetscCheck(sc->control >= PD_CONTROL_ARCLENGTH ||
+                   (sc->control == PD_CONTROL_FORCE) == (sc->region[sc->load_region].kind == PD_REGION_FORCE),
+               comm, PETSC_ERR_USER_INPUT, "Option -pd_control: '%s' does not match the load region %s, which is a %s region",
+               PDControlNames[sc->control], sc->region[sc->load_region].option, PDRegionKinds[sc->region[sc->load_region].kind]);
+    if (sc->control >= PD_CONTROL_ARCLENGTH) {
+      PetscInt at = sc->has_cmod ? PD_ARC_CMOD : PD_ARC_CYLINDRICAL;
+      PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_arclength_type",
+                             "Path-following constraint: spherical, cylindrical (displacement norm), cmod (gauge opening), dissipation "
+                             "(energy released); default cmod when the scene has a gauge",
+                             PDArcTypes, 4, &at, NULL));
+      sc->arc_type = (PDArcType)at;
+      PetscCheck(sc->arc_type != PD_ARC_CMOD || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_arclength_type: cmod needs a CMOD gauge (-pd_cmod_points)");
+      sc->arc_growth     = 4;
+      sc->arc_target_its = 6;
+      sc->stop_fraction  = 0.02;
+      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
+                             "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
+                             &sc->arc_initial, NULL));
+      PetscCheck(sc->arc_initial >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_initial: must be non-negative, got %g",
+                 (double)sc->arc_initial);
+      PetscCall(
+          PDOptionReal(PetscOptionsObject, "-pd_arclength_growth", "Largest arc length as a multiple of the first", &sc->arc_growth, NULL));
+      PetscCheck(sc->arc_growth >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_growth: must be at least 1, got %g",
+                 (double)sc->arc_growth);
+      PetscCall(PDOptionInt(PetscOptionsObject, "-pd_arclength_target_its", "Newton iterations per step the adaptive arc length aims at",
+                            &sc->arc_target_its, NULL));
+      PetscCheck(sc->arc_target_its >= 1, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_arclength_target_its: must be at least 1, got %" PetscInt_FMT, sc->arc_target_its);
+      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_stop_fraction",
+                             "After the peak, stop with status separated once the load falls below this fraction of it; 0: off",
+                             &sc->stop_fraction, NULL));
+      PetscCheck(sc->stop_fraction >= 0 && sc->stop_fraction < 1, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_stop_fraction: must lie in [0, 1), got %g", (double)sc->stop_fraction);
+    }
     PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_tangent",
                            "Tangent of softening bonds: consistent (quadratic Newton, indefinite) or secant (positive)", PDTangentNames, 2,
                            &t, NULL));
@@ -501,10 +540,11 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
     PetscCall(
         PDOptionReal(PetscOptionsObject, "-pd_damping", "Explicit: local damping C (kg/(m^3 s)), force density -C v", &sc->damping, NULL));
     PetscCheck(sc->damping >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_damping: must be non-negative, got %g", (double)sc->damping);
-    PetscCall(PDOptionBool(PetscOptionsObject, "-pd_adr",
-                           "Explicit: adaptive dynamic relaxation (fictitious masses, unit time steps, damping from the Rayleigh quotient); "
-                           "times are then counted in steps",
-                           &sc->adr, NULL));
+    PetscCall(
+        PDOptionBool(PetscOptionsObject, "-pd_adr",
+                     "Explicit: adaptive dynamic relaxation (fictitious masses, unit time steps, damping from the Rayleigh quotient); "
+                     "times are then counted in steps",
+                     &sc->adr, NULL));
     PetscCheck(!(sc->adr && sc->damping > 0), comm, PETSC_ERR_USER_INPUT, "Option -pd_adr: sets its own damping; drop -pd_damping %g",
                (double)sc->damping);
     PetscCall(PDOptionInt(PetscOptionsObject, "-pd_output_stride", "Explicit: time steps between curve rows; 0: about 400 rows",
@@ -527,8 +567,8 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                         "Damage limiter: bond events (entering softening, breaking) per Newton iteration; 0: no cap; default 10 per "
                         "150,000 bonds, at least 10",
                         &sc->limiter_max, &set));
-  PetscCheck(!set || sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT,
-             sc->limiter_max);
+  PetscCheck(!set || sc->limiter_max >= 0, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_limiter_max_bonds: must be non-negative, got %" PetscInt_FMT, sc->limiter_max);
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_stage_its", "Newton iterations between two grants of the limiter",
                         &sc->limiter_stage_its, NULL));
   PetscCheck(sc->limiter_stage_its >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_stage_its: must be at least 1, got %" PetscInt_FMT,

@@ -137,9 +137,9 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
   c.monitor     = Judge_Monitor;
   c.monitor_ctx = &jd;
   jd.window     = PetscMax(1, (PetscInt)((sc->failure_window > 0 ? sc->failure_window : 0.25 * c.t_ramp) / (10 * c.dt)));
-  PetscCall(PetscPrintf(comm,
-                        "  failure search (%s criterion): bracket %.1f to %.1f N, tolerance %g, trials of %" PetscInt_FMT " steps at most\n",
-                        PDFailureCriteria[sc->failure_criterion], (double)L, (double)U, (double)sc->failure_tol, c.nsteps));
+  PetscCall(PetscPrintf(
+      comm, "  failure search (%s criterion): bracket %.1f to %.1f N, tolerance %g, trials of %" PetscInt_FMT " steps at most\n",
+      PDFailureCriteria[sc->failure_criterion], (double)L, (double)U, (double)sc->failure_tol, c.nsteps));
   rec->converged = PETSC_TRUE;
   while ((U - L) / L > sc->failure_tol && rec->ntrials < (PetscInt)(sizeof rec->trial / sizeof rec->trial[0])) {
     const PetscReal T = PetscSqrtReal(L * U);

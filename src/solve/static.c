@@ -2,7 +2,7 @@
    displacement and applied force; each increment is solved by SNES (one KSP solve with SNESKSPONLY when
    the model is linear), with the damage limiter granting bond events between Newton stages. Increments
    are cut on failure and grown on easy convergence. */
-#include "pd_solve.h"
+#include "path.h"
 
 #define PD_MAX_STAGES 1000000
 
@@ -117,20 +117,16 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
   Mat            J;
-  Vec            u, u_n, r, du, f_prev;
-  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, w_ext = 0;
-  PetscScalar    dw;
+  Vec            u, r;
+  PDPath         path;
+  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps;
   PetscInt       step = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
   PetscCall(VecDuplicate(m->f_ref, &u));
-  PetscCall(VecDuplicate(m->f_ref, &u_n));
   PetscCall(VecDuplicate(m->f_ref, &r));
-  PetscCall(VecDuplicate(m->f_ref, &du));
-  PetscCall(VecDuplicate(m->f_ref, &f_prev));
-  PetscCall(VecZeroEntries(u_n));
-  PetscCall(VecZeroEntries(f_prev)); /* f_int(0) */
+  PetscCall(PDPathCreate(m, &path));
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
   PetscCall(SNESSetJacobian(snes, J, J, PDModelJacobian, m));
@@ -142,11 +138,11 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     const PetscReal lam = PetscMin(lambda_n + dl, sc->lambda_max);
     StepResult      res;
     PDCurveRow      row;
-    PetscLogDouble  t0, t1, now;
+    PetscLogDouble  t0, t1;
     PetscReal       asm0 = m->t_assembly;
     PetscBool       stop = PETSC_FALSE;
 
-    PetscCall(VecCopy(u_n, u));
+    PetscCall(VecCopy(path.u_n, u));
     PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
     PetscCall(SolveIncrement(m, snes, u, &res));
@@ -166,31 +162,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       PetscCall(PetscInfo(NULL, "increment to %g failed (%s): cut to %g\n", (double)lam, res.why, (double)dl));
       continue;
     }
-    PetscCall(PDModelCommitHistory(m, u));
-    PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
-    /* external work, trapezoidal along the path: at equilibrium the applied forces and reactions are
-       f_int on every dof, so dW = (f_int(u_n) + f_int(u)).(u - u_n) / 2 */
-    PetscCall(VecWAXPY(du, -1, u_n, u));
-    PetscCall(VecAXPY(f_prev, 1, m->f_work));
-    PetscCall(VecDot(f_prev, du, &dw));
-    w_ext += 0.5 * PetscRealPart(dw);
-    PetscCall(VecCopy(m->f_work, f_prev));
-    PetscCall(VecCopy(u, u_n));
-    lambda_n = lam;
-    step++;
-    rec->steps              = step;
+    PetscCall(PDPathAccept(m, rec, &path, u, lam, res.its, res.lits, &row));
+    lambda_n                = lam;
+    step                    = path.step;
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, res.max_events);
-    PetscCall(PetscTime(&now));
-    row.step         = step;
-    row.lambda       = lam;
-    row.newton_its   = res.its;
-    row.ksp_its      = res.lits;
-    row.broken_bonds = m->broken;
-    row.wall         = now - rec->t_start;
-    row.external     = w_ext;
-    row.kinetic = row.damped = 0;
-    PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
-    PetscCall(PDRecordAddRow(rec, &row));
     if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
@@ -207,7 +182,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       dl = PetscMin(1.25 * dl, sc->dlambda_max);
   }
   if (!rec->converged && rec->steps > 0 && (!rec->nfield_steps || rec->field_steps[rec->nfield_steps - 1] != rec->steps))
-    PetscCall(PDFieldsWrite(m, rec, rec->steps, u_n));
+    PetscCall(PDFieldsWrite(m, rec, rec->steps, path.u_n));
   {
     MatInfo  info;
     KSP      ksp;
@@ -227,9 +202,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(SNESDestroy(&snes));
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&u));
-  PetscCall(VecDestroy(&u_n));
   PetscCall(VecDestroy(&r));
-  PetscCall(VecDestroy(&du));
-  PetscCall(VecDestroy(&f_prev));
+  PetscCall(PDPathDestroy(&path));
   PetscFunctionReturn(0);
 }

@@ -1,0 +1,16 @@
+/* Quasi-static path state shared by the load/displacement-control and path-following drivers. */
+#pragma once
+#include "pd_solve.h"
+
+typedef struct {
+  Vec       u_n;      /* last accepted displacement */
+  Vec       f_n;      /* internal force there (applied forces and reactions) */
+  Vec       du;       /* work */
+  PetscReal lambda_n; /* last accepted load factor */
+  PetscReal w_ext;    /* external work so far (J) */
+  PetscInt  step;     /* accepted steps */
+} PDPath;
+
+PetscErrorCode PDPathCreate(PDModel *, PDPath *);
+PetscErrorCode PDPathAccept(PDModel *, PDRecord *, PDPath *, Vec u, PetscReal lambda, PetscInt its, PetscInt lits, PDCurveRow *);
+PetscErrorCode PDPathDestroy(PDPath *);
