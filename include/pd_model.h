@@ -64,5 +64,6 @@ PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
+PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

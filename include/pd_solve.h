@@ -4,5 +4,7 @@
 #include "pd_io.h"
 
 PetscErrorCode PDStaticRun(PDModel *, PDRecord *);
+PetscErrorCode PDArcLengthRun(PDModel *, PDRecord *);
+PetscErrorCode PDSolverConfigureKSP(PDModel *, KSP);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
 PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);

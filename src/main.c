@@ -71,9 +71,10 @@ int main(int argc, char **argv) {
                           model.nzero_dofs, model.nisolated));
   PetscCall(PDOutputPrepare(comm, &sc, &rec));
   if (!dry_run)
-    PetscCall(sc.failure_search  ? PDFailureSearchRun(&model, &rec)
-              : sc.explicit_mode ? PDExplicitRun(&model, &rec)
-                                 : PDStaticRun(&model, &rec));
+    PetscCall(sc.failure_search                    ? PDFailureSearchRun(&model, &rec)
+              : sc.explicit_mode                   ? PDExplicitRun(&model, &rec)
+              : sc.control >= PD_CONTROL_ARCLENGTH ? PDArcLengthRun(&model, &rec)
+                                                   : PDStaticRun(&model, &rec));
   else
     PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));
   converged     = dry_run ? PETSC_TRUE : rec.converged;

@@ -38,9 +38,10 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
      switches the default storage to AIJ. -pd_mat_type overrides either choice. */
   {
     char      pctype[64] = "";
-    PetscBool gamg       = PETSC_FALSE;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, NULL));
+    PetscBool gamg = PETSC_FALSE, set;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &set));
     PetscCall(PetscStrcmp(pctype, PCGAMG, &gamg));
+    if (!set && bs == 2) gamg = PETSC_TRUE; /* the default for 2D models (PDSolverConfigureKSP) */
     PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
   }
   PetscCall(MatSetOptionsPrefix(*J, "pd_"));

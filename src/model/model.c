@@ -447,6 +447,13 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
    tangent is constant. Path following needs the coupling of free and constrained dofs, which the
    assembled matrix drops. */
 PetscErrorCode PDModelTangentApply(PDModel *m, Vec u, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  PetscCall(PDModelTangentApplyAt(m, u, x, y, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* The same, the bond scalars first recomputed at u when refresh is set. */
+PetscErrorCode PDModelTangentApplyAt(PDModel *m, Vec u, Vec x, Vec y, PetscBool refresh) {
   const PetscScalar *ul, *xl;
   PetscScalar       *yl, *yy;
   Vec                uloc, xloc, yloc;
@@ -457,6 +464,7 @@ PetscErrorCode PDModelTangentApply(PDModel *m, Vec u, Vec x, Vec y) {
   PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  if (refresh && m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb));
   PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &yloc));
   PetscCall(VecGetArrayRead(xloc, &xl));

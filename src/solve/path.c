@@ -8,6 +8,7 @@ PetscErrorCode PDPathCreate(PDModel *m, PDPath *p) {
   PetscCall(VecDuplicate(m->f_ref, &p->u_n));
   PetscCall(VecDuplicate(m->f_ref, &p->f_n));
   PetscCall(VecDuplicate(m->f_ref, &p->du));
+  PetscCall(VecDuplicate(m->f_ref, &p->ku));
   PetscCall(VecZeroEntries(p->u_n));
   PetscCall(VecZeroEntries(p->f_n)); /* f_int(0) */
   PetscFunctionReturn(0);
@@ -18,24 +19,38 @@ PetscErrorCode PDPathDestroy(PDPath *p) {
   PetscCall(VecDestroy(&p->u_n));
   PetscCall(VecDestroy(&p->f_n));
   PetscCall(VecDestroy(&p->du));
+  PetscCall(VecDestroy(&p->ku));
   PetscFunctionReturn(0);
 }
 
-/* Commits the state u at load factor lam and fills a curve row. External work is trapezoidal along the
-   path: at equilibrium the applied forces and reactions are f_int on every dof, so
-   dW = (f_int(u_n) + f_int(u)).(u - u_n) / 2. Afterwards u_n = u and f_n = f_int(u). */
+/* Commits the state u at load factor lam and fills a curve row. At equilibrium the applied forces and
+   reactions are f_int on every dof, so the external work of the step is the integral of f_int along it,
+   taken as the cubic through both ends and their tangents (Hermite):
+   dW = (f_n + f).du / 2 + (K_n du - K du).du / 12, both tangents with the step's starting history.
+   The plain trapezoid left 1.4 % of the work unbalanced after the large steps where cracking starts.
+   Afterwards u_n = u and f_n = f_int(u). */
 PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscReal lam, PetscInt its, PetscInt lits, PDCurveRow *row) {
-  PetscScalar    dw;
+  PetscScalar    dw, c = 0;
   PetscLogDouble now;
 
   PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(p->du, -1, p->u_n, u));
+  if (m->ka) { /* the tangent varies: end-slope correction (before the history moves) */
+    const PetscReal lam_u = m->lambda;
+    m->lambda             = p->lambda_n;
+    PetscCall(PDModelTangentApplyAt(m, p->u_n, p->du, p->ku, PETSC_TRUE));
+    m->lambda = lam;
+    PetscCall(PDModelTangentApplyAt(m, u, p->du, m->f_work, PETSC_TRUE));
+    PetscCall(VecAXPY(p->ku, -1, m->f_work));
+    PetscCall(VecDot(p->ku, p->du, &c));
+    m->lambda = lam_u;
+  }
   m->lambda = lam;
   PetscCall(PDModelCommitHistory(m, u));
   PetscCall(PDModelMeasure(m, u, &row->load, &row->disp, &row->cmod));
-  PetscCall(VecWAXPY(p->du, -1, p->u_n, u));
   PetscCall(VecAXPY(p->f_n, 1, m->f_work));
   PetscCall(VecDot(p->f_n, p->du, &dw));
-  p->w_ext += 0.5 * PetscRealPart(dw);
+  p->w_ext += 0.5 * PetscRealPart(dw) + PetscRealPart(c) / 12;
   PetscCall(VecCopy(m->f_work, p->f_n));
   PetscCall(VecCopy(u, p->u_n));
   p->lambda_n = lam;

@@ -1,0 +1,350 @@
+/* Path following (THEORY.md Sec. 5): the load factor lambda becomes an unknown next to u, tied to the
+   step by a constraint, so the path can pass limit points and snap-backs. Prescribed displacements
+   move with lambda (u_c = lambda u_ref), so the equilibrium equations on free dofs are
+   G(u_f, lambda) = f_int(u_f, lambda u_ref) - lambda f_ref = 0 with dG/dlambda = K_fc u_ref - f_ref.
+   Each Newton iteration makes two solves with one operator and one preconditioner (bordering):
+   K du_I = -G and K du_II = -dG/dlambda; the update is du_I + dlambda v with v = du_II + u_ref, and
+   dlambda comes from the linearised constraint:
+     cmod         c.(u - u_n) = dl                          (the gauge opens by dl: CMOD control)
+     cylindrical  |u - u_n|^2 = dl^2                        (Crisfield; root nearest the last step)
+     spherical    |u - u_n|^2 + psi^2 (lambda - lambda_n)^2 = dl^2, psi = |v| of the first step
+     dissipation  (f_n.u - f_int(u).u_n) / 2 = dl           (energy released by damage; secant laws)
+   The damage limiter grants bond events between converged iterations as under plain control; the arc
+   length adapts to the iteration count and is cut on failure. Under -pd_control auto (and always for
+   the dissipation constraint, which is singular while nothing dissipates) the region's plain control
+   runs until the first bond softens. */
+#include "path.h"
+
+typedef struct {
+  PDModel  *m;
+  PDRecord *rec;
+  Mat       J;
+  KSP       ksp;
+  Vec       u, fint, R, q, duI, v, w, dprev;
+  PetscReal lam;
+  PetscReal psi2;       /* spherical scaling of lambda */
+  PetscBool have_prev;  /* dprev holds the last accepted step */
+  PetscInt  its, lits;  /* this step */
+  PetscInt  assemblies; /* for the preconditioner lag */
+  PetscBool direct;     /* KSPPREONLY: no lag */
+} Arc;
+
+typedef enum { ARC_LOAD = -1 } ArcPlain; /* plain control: lambda advances by a fixed increment */
+
+/* Residual on free dofs (constrained ones are lifted to lambda u_ref, so theirs is zero) and |f_int|. */
+static PetscErrorCode Residual(Arc *a, PetscReal *rnorm, PetscReal *fnorm) {
+  PDModel *m = a->m;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
+  PetscCall(PDModelInternalForce(m, a->u, a->fint));
+  PetscCall(VecNorm(a->fint, NORM_2, fnorm));
+  PetscCall(VecWAXPY(a->R, -a->lam, m->f_ref, a->fint));
+  PetscCall(VecPointwiseMult(a->w, a->R, m->fixed));
+  PetscCall(VecAXPY(a->R, -1, a->w)); /* zero on constrained dofs */
+  PetscCall(VecNorm(a->R, NORM_2, rnorm));
+  PetscFunctionReturn(0);
+}
+
+/* Tangent at u, the preconditioner rebuilt every third assembly, and the path direction v per unit
+   lambda: K du_II = -(K u_ref - f_ref) on free dofs, v = du_II + u_ref. */
+static PetscErrorCode TangentAndDirection(Arc *a) {
+  PDModel *m = a->m;
+  PetscInt n;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelJacobian(NULL, a->u, a->J, a->J, m));
+  /* an iterative solve absorbs a lagged factor (rebuilt every third assembly, as under plain control); a
+     direct one (preonly) must factor every time */
+  PetscCall(KSPSetReusePreconditioner(a->ksp, a->direct || a->assemblies++ % 3 == 0 ? PETSC_FALSE : PETSC_TRUE));
+  PetscCall(KSPSetOperators(a->ksp, a->J, a->J));
+  PetscCall(PDModelTangentApply(m, a->u, m->u_ref, a->q));
+  PetscCall(VecAXPY(a->q, -1, m->f_ref));
+  PetscCall(VecPointwiseMult(a->w, a->q, m->fixed));
+  PetscCall(VecAXPY(a->q, -1, a->w));
+  PetscCall(VecScale(a->q, -1));
+  PetscCall(KSPSolve(a->ksp, a->q, a->v));
+  PetscCall(KSPGetIterationNumber(a->ksp, &n));
+  a->lits += n;
+  PetscCall(VecAXPY(a->v, 1, m->u_ref));
+  PetscFunctionReturn(0);
+}
+
+/* The load-factor change that the linearised constraint asks for, given the iteration's du_I (zero for
+   the predictor). Returns PETSC_FALSE when the constraint has no real solution. */
+static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscBool predictor, PetscReal *dlam,
+                                       PetscBool *ok) {
+  PDModel    *m = a->m;
+  PetscScalar cv, cu;
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_TRUE;
+  /* w = u - u_n + du_I: where the iterate goes before the lambda correction */
+  PetscCall(VecWAXPY(a->w, -1, p->u_n, a->u));
+  if (!predictor) PetscCall(VecAXPY(a->w, 1, a->duI));
+  switch (type) {
+  case ARC_LOAD:
+    *dlam = predictor ? dl : 0;
+    break;
+  case PD_ARC_CMOD:
+    PetscCall(VecDot(m->cmod_pattern, a->v, &cv));
+    PetscCall(VecDot(m->cmod_pattern, a->w, &cu));
+    *ok   = PetscAbsScalar(cv) > 0 ? PETSC_TRUE : PETSC_FALSE;
+    *dlam = *ok ? (dl - PetscRealPart(cu)) / PetscRealPart(cv) : 0;
+    break;
+  case PD_ARC_CYLINDRICAL:
+  case PD_ARC_SPHERICAL: {
+    const PetscReal psi2 = type == PD_ARC_SPHERICAL ? a->psi2 : 0, Dl = a->lam - p->lambda_n;
+    PetscScalar     vv, vw, ww, vp = 1, wp = 1;
+    PetscReal       A, B, C, disc, r1, r2, s1, s2;
+    PetscCall(VecDot(a->v, a->v, &vv));
+    PetscCall(VecDot(a->v, a->w, &vw));
+    PetscCall(VecDot(a->w, a->w, &ww));
+    A    = PetscRealPart(vv) + psi2;
+    B    = 2 * (PetscRealPart(vw) + psi2 * Dl);
+    C    = PetscRealPart(ww) + psi2 * Dl * Dl - dl * dl;
+    disc = B * B - 4 * A * C;
+    if (disc < 0) {
+      *ok = PETSC_FALSE;
+      break;
+    }
+    r1 = (-B + PetscSqrtReal(disc)) / (2 * A);
+    r2 = (-B - PetscSqrtReal(disc)) / (2 * A);
+    /* the root that keeps going the way the path went: predictor by the last step's direction (the
+       first step loads), corrector by the angle with the current step */
+    if (predictor) {
+      if (a->have_prev) PetscCall(VecDot(a->v, a->dprev, &vp));
+      *dlam = PetscRealPart(vp) >= 0 ? PetscMax(r1, r2) : PetscMin(r1, r2);
+    } else {
+      PetscCall(VecDot(a->w, a->w, &wp));
+      s1    = PetscRealPart(ww) + r1 * PetscRealPart(vw) + psi2 * (Dl + r1) * Dl;
+      s2    = PetscRealPart(ww) + r2 * PetscRealPart(vw) + psi2 * (Dl + r2) * Dl;
+      *dlam = s1 >= s2 ? r1 : r2;
+    }
+  } break;
+  case PD_ARC_DISSIPATION: {
+    /* g = (f_n.u - f_int(u).u_n)/2 - dl, linearised with d(f_int.u_n) = (K u_n).du */
+    PetscScalar fu, fi, wd, wv;
+    PetscReal   g;
+    PetscCall(VecDot(p->f_n, a->u, &fu));
+    PetscCall(VecDot(a->fint, p->u_n, &fi));
+    g = 0.5 * PetscRealPart(fu - fi) - dl;
+    PetscCall(PDModelTangentApply(m, a->u, p->u_n, a->q));
+    PetscCall(VecAYPX(a->q, -1, p->f_n)); /* f_n - K u_n */
+    PetscCall(VecDot(a->q, a->duI, &wd));
+    PetscCall(VecDot(a->q, a->v, &wv));
+    if (predictor) wd = 0;
+    *ok   = PetscAbsScalar(wv) > 0 ? PETSC_TRUE : PETSC_FALSE;
+    *dlam = *ok ? -(g + 0.5 * PetscRealPart(wd)) / (0.5 * PetscRealPart(wv)) : 0;
+  } break;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* One step of length dl: predictor along v, then bordered Newton corrections until equilibrium holds,
+   the constraint is met and the limiter has no event left. */
+static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscInt *max_events, PetscBool *ok) {
+  PDModel       *m     = a->m;
+  const PetscInt maxit = 25;
+  PetscReal      dlam, rnorm, fnorm;
+  PetscBool      fine;
+
+  PetscFunctionBeginUser;
+  *ok     = PETSC_FALSE;
+  a->its  = 0;
+  a->lits = 0;
+  PetscCall(VecCopy(p->u_n, a->u));
+  a->lam = p->lambda_n;
+  PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
+  PetscCall(TangentAndDirection(a));
+  PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
+  if (!fine) PetscFunctionReturn(0);
+  PetscCall(VecAXPY(a->u, dlam, a->v));
+  a->lam += dlam;
+  /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
+     soften together takes many grants, each a small perturbation Newton absorbs in a few iterations */
+  for (PetscInt k = 0, stages = 0; k < maxit; k++) {
+    PetscInt  n, ncand, granted;
+    PetscReal tol;
+    PetscCall(Residual(a, &rnorm, &fnorm));
+    if (PetscIsInfOrNanReal(rnorm)) PetscFunctionReturn(0);
+    tol = 1e-8 * fnorm + 1e-12 * m->force_scale;
+    if (rnorm <= tol) {
+      PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));
+      *max_events = PetscMax(*max_events, granted);
+      if (!granted) {
+        *ok = PETSC_TRUE;
+        PetscFunctionReturn(0);
+      }
+      if (++stages > 100000) PetscFunctionReturn(0);
+      k = 0;
+      PetscCall(Residual(a, &rnorm, &fnorm));
+    }
+    PetscCall(TangentAndDirection(a));
+    PetscCall(VecScale(a->R, -1));
+    PetscCall(KSPSolve(a->ksp, a->R, a->duI));
+    PetscCall(KSPGetIterationNumber(a->ksp, &n));
+    a->lits += n;
+    a->its++;
+    {
+      KSPConvergedReason kr;
+      PetscCall(KSPGetConvergedReason(a->ksp, &kr));
+      if (kr < 0) PetscFunctionReturn(0);
+    }
+    PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_FALSE, &dlam, &fine));
+    if (!fine) PetscFunctionReturn(0);
+    PetscCall(VecAXPY(a->u, 1, a->duI));
+    PetscCall(VecAXPY(a->u, dlam, a->v));
+    a->lam += dlam;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The measure of a finished step in the constraint's units, to start the arc length from. */
+static PetscErrorCode StepLength(Arc *a, PDPath *p, Vec u_prev, PetscReal lam_prev, PetscReal d_prev, PetscInt type, PetscReal *dl) {
+  PDModel    *m = a->m;
+  PetscScalar t;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(a->w, -1, u_prev, p->u_n));
+  switch (type) {
+  case PD_ARC_CMOD:
+    PetscCall(VecDot(m->cmod_pattern, a->w, &t));
+    *dl = PetscRealPart(t);
+    break;
+  case PD_ARC_CYLINDRICAL:
+    PetscCall(VecNorm(a->w, NORM_2, dl));
+    break;
+  case PD_ARC_SPHERICAL:
+    PetscCall(VecNorm(a->w, NORM_2, dl));
+    *dl = PetscSqrtReal(*dl * *dl + a->psi2 * (p->lambda_n - lam_prev) * (p->lambda_n - lam_prev));
+    break;
+  default: {
+    PetscReal st, ds;
+    PetscCall(PDModelEnergy(m, p->u_n, &st, &ds));
+    *dl = PetscMax(ds - d_prev, 1e-2 * st); /* dissipation: at least a hundredth of the stored energy */
+  } break;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
+  const PDScene *sc   = m->scene;
+  MPI_Comm       comm = m->lat->comm;
+  Arc            a;
+  PDPath         path;
+  Vec            u_prev;
+  PC             pc;
+  PetscInt       type = ARC_LOAD; /* the first step, and plain control until softening under auto */
+  PetscReal      dl = 0, dl0 = 0, dlam = sc->lambda_max / sc->steps, peak = 0, lam_prev = 0, d_prev = 0;
+  const PetscInt maxsteps = 20 * sc->steps;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(&a, sizeof a));
+  a.m   = m;
+  a.rec = rec;
+  PetscCall(PDModelCreateMatrix(m, &a.J));
+  PetscCall(VecDuplicate(m->f_ref, &a.u));
+  PetscCall(VecDuplicate(m->f_ref, &u_prev));
+  {
+    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev};
+    for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDuplicate(m->f_ref, work[k]));
+  }
+  PetscCall(PDPathCreate(m, &path));
+  PetscCall(KSPCreate(comm, &a.ksp));
+  PetscCall(PDSolverConfigureKSP(m, a.ksp));
+  PetscCall(KSPSetTolerances(a.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
+  PetscCall(KSPSetFromOptions(a.ksp));
+  PetscCall(KSPGetPC(a.ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)a.ksp, KSPPREONLY, &a.direct));
+  rec->converged = PETSC_TRUE;
+  PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
+  while (path.step < maxsteps) {
+    PDCurveRow row;
+    PetscInt   max_events = 0;
+    PetscBool  ok, stop = PETSC_FALSE;
+    PetscReal  len = type == ARC_LOAD ? PetscMin(dlam, sc->lambda_max - path.lambda_n) : dl;
+
+    PetscCall(Step(&a, &path, type, len, &max_events, &ok));
+    rec->newton_its += a.its;
+    rec->ksp_its += a.lits;
+    if (!ok) {
+      PetscCall(PDModelRestoreLevels(m));
+      if (type == ARC_LOAD ? dlam * 0.5 < sc->dlambda_min : dl * 0.5 < 1e-6 * dl0) {
+        rec->converged = PETSC_FALSE;
+        PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g: %s %g at its floor", (double)path.lambda_n,
+                                type == ARC_LOAD ? "increment" : "arc length", (double)(type == ARC_LOAD ? dlam : dl)));
+        break;
+      }
+      if (type == ARC_LOAD)
+        dlam *= 0.5;
+      else
+        dl *= 0.5;
+      continue;
+    }
+    if (path.step == 0) { /* spherical scaling from the first, elastic, direction */
+      PetscScalar vv;
+      PetscCall(VecDot(a.v, a.v, &vv));
+      a.psi2 = PetscRealPart(vv);
+    }
+    PetscCall(VecCopy(path.u_n, u_prev));
+    lam_prev = path.lambda_n;
+    {
+      PetscReal st;
+      PetscCall(PDModelEnergy(m, path.u_n, &st, &d_prev));
+    }
+    PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
+    rec->max_events_per_its = PetscMax(rec->max_events_per_its, max_events);
+    PetscCall(VecWAXPY(a.dprev, -1, u_prev, path.u_n));
+    a.have_prev = PETSC_TRUE;
+    /* the first step sets the arc length; under auto (and for the dissipation constraint) plain control
+       hands over once a bond softens */
+    if (type == ARC_LOAD &&
+        ((sc->control == PD_CONTROL_ARCLENGTH && sc->arc_type != PD_ARC_DISSIPATION) || m->softening_bonds > 0 || m->broken > 0)) {
+      type = sc->arc_type;
+      PetscCall(StepLength(&a, &path, u_prev, lam_prev, d_prev, type, &dl));
+      if (sc->arc_initial > 0) dl = sc->arc_initial;
+      dl0 = dl;
+      PetscCall(
+          PetscInfo(NULL, "path following (%s) from step %" PetscInt_FMT ", arc length %g\n", PDArcTypes[type], path.step, (double)dl));
+    } else if (type != ARC_LOAD) { /* aim at arc_target_its Newton iterations, within [dl0 / 1000, growth dl0] */
+      const PetscReal f = PetscSqrtReal((PetscReal)sc->arc_target_its / PetscMax(1, a.its)), cap = sc->arc_growth;
+      dl = PetscMax(1e-3 * dl0, PetscMin(cap * dl0, dl * PetscMax(0.5, PetscMin(2, f))));
+    } else if (a.its <= 3)
+      dlam = PetscMin(2 * dlam, sc->dlambda_max);
+    peak = PetscMax(peak, PetscAbsReal(row.load));
+    if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
+      stop = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
+    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak) {
+      stop = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
+                              (double)sc->stop_fraction, (double)peak));
+    } else if (path.lambda_n >= sc->lambda_max * (1 - 1e-12))
+      stop = PETSC_TRUE;
+    PetscCall(PDProgress(comm, sc, &row, stop));
+    if (stop || (sc->fields_every > 0 && path.step % sc->fields_every == 0)) PetscCall(PDFieldsWrite(m, rec, path.step, path.u_n));
+    if (stop) break;
+  }
+  if (path.step >= maxsteps) {
+    rec->converged = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "stopped after %" PetscInt_FMT " steps (20 times -pd_steps)", path.step));
+  }
+  if (!rec->converged && path.step > 0 && (!rec->nfield_steps || rec->field_steps[rec->nfield_steps - 1] != path.step))
+    PetscCall(PDFieldsWrite(m, rec, path.step, path.u_n));
+  {
+    KSPType kt;
+    PCType  pt;
+    PetscCall(KSPGetType(a.ksp, &kt));
+    PetscCall(PCGetType(pc, &pt));
+    PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "arclength(%s)/%s/%s", PDArcTypes[sc->arc_type], kt, pt));
+  }
+  PetscCall(KSPDestroy(&a.ksp));
+  PetscCall(MatDestroy(&a.J));
+  {
+    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &u_prev};
+    for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));
+  }
+  PetscCall(PDPathDestroy(&path));
+  PetscFunctionReturn(0);
+}
