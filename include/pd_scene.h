@@ -84,13 +84,15 @@ typedef struct {
   PetscBool    notch_surface; /* notch faces count as free surfaces in the surface correction */
   PDKinematics kinematics;
   PDStretch    stretch;
-  PetscBool    sc_correction; /* per-bond critical stretch from lambda_ij c */
+  PetscBool    sc_correction;    /* per-bond critical stretch from lambda_ij c */
+  PetscReal    strength_scatter; /* per-bond tensile strength f_t (1 + r xi), xi uniform in [-1, 1] by bond id; 0: none */
   PDControl    control;
   /* path following (-pd_control arclength|auto) */
   PDArcType  arc_type;       /* constraint */
   PetscReal  arc_initial;    /* first arc length (units of the constraint); 0: from the first load step */
   PetscReal  arc_growth;     /* largest arc length over the first one */
   PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
+  PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
   PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
   PDTangent  tangent;
   PetscInt   limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */

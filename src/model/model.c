@@ -1,6 +1,7 @@
 /* Model set-up: boundary conditions from node regions, measurement patterns, residual and Jacobian. */
 #include "pd_model.h"
 #include "kernel.h"
+#include <stdint.h>
 
 static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v) {
   PetscFunctionBeginUser;
@@ -228,6 +229,16 @@ static PetscErrorCode SetupScale(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
+/* A number in [-1, 1] from a bond's global id (splitmix64): the same bond gets the same value on any
+   rank count. */
+static PetscReal Scatter(PetscInt64 id) {
+  uint64_t z = (uint64_t)id + 0x9E3779B97F4A7C15ull;
+  z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z          = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return 2 * (PetscReal)(z >> 11) / (PetscReal)(1ull << 53) - 1;
+}
+
 PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBonds *bd, PDModel *m) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof *m));
@@ -268,9 +279,13 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     const PetscInt nb = PetscMax(1, bd->nbonds);
     PetscCall(PetscCalloc4(nb, &m->kappa, nb, &m->level, nb, &m->level_n, nb, &m->stretch));
     m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
-    if (bd->lambda) {
+    if (bd->lambda || sc->strength_scatter > 0) {
       PetscCall(PetscMalloc1(nb, &m->thr));
-      for (PetscInt e = 0; e < bd->nbonds; e++) PDLawBondThresholds(&m->law[bd->material[e]], bd->lambda[e], &m->thr[e]);
+      for (PetscInt e = 0; e < bd->nbonds; e++) {
+        PDLaw law = m->law[bd->material[e]];
+        law.ft *= 1 + sc->strength_scatter * Scatter(PDBondGlobalId(lat, bd, e));
+        PDLawBondThresholds(&law, bd->lambda ? bd->lambda[e] : 1, &m->thr[e]);
+      }
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
     }
   }

@@ -409,6 +409,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                            NULL));
     sc->stretch = (PDStretch)v;
   }
+  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_strength_scatter",
+                         "Relative scatter r of the tensile strength per bond, f_t (1 + r xi) with xi in [-1, 1] from the bond's global id "
+                         "(the same on any rank count); the fracture energy is kept. Heterogeneity that lets diffuse damage localise",
+                         &sc->strength_scatter, NULL));
+  PetscCheck(sc->strength_scatter >= 0 && sc->strength_scatter < 1, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_strength_scatter: must lie in [0, 1), got %g", (double)sc->strength_scatter);
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction",
                          "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)", &sc->sc_correction, NULL));
 
@@ -493,6 +499,14 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
       sc->arc_growth     = 4;
       sc->arc_target_its = 6;
       sc->stop_fraction  = 0.02;
+      sc->arc_rtol       = 1e-7;
+      PetscCall(
+          PDOptionReal(PetscOptionsObject, "-pd_arclength_rtol",
+                       "Path following: a step is in equilibrium when |residual| is below this fraction of |f_int| (applied forces and "
+                       "reactions)",
+                       &sc->arc_rtol, NULL));
+      PetscCheck(sc->arc_rtol > 0 && sc->arc_rtol < 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_rtol: must lie in (0, 1), got %g",
+                 (double)sc->arc_rtol);
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
                              "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
                              &sc->arc_initial, NULL));

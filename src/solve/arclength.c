@@ -16,17 +16,18 @@
 #include "path.h"
 
 typedef struct {
-  PDModel  *m;
-  PDRecord *rec;
-  Mat       J;
-  KSP       ksp;
-  Vec       u, fint, R, q, duI, v, w, dprev;
-  PetscReal lam;
-  PetscReal psi2;       /* spherical scaling of lambda */
-  PetscBool have_prev;  /* dprev holds the last accepted step */
-  PetscInt  its, lits;  /* this step */
-  PetscInt  assemblies; /* for the preconditioner lag */
-  PetscBool direct;     /* KSPPREONLY: no lag */
+  PDModel    *m;
+  PDRecord   *rec;
+  Mat         J;
+  KSP         ksp;
+  Vec         u, fint, R, q, duI, v, w, dprev;
+  PetscReal   lam;
+  PetscReal   psi2;       /* spherical scaling of lambda */
+  PetscBool   have_prev;  /* dprev holds the last accepted step */
+  PetscInt    its, lits;  /* this step */
+  PetscInt    assemblies; /* for the preconditioner lag */
+  PetscBool   direct;     /* KSPPREONLY: no lag */
+  const char *why;        /* why the last step failed */
 } Arc;
 
 typedef enum { ARC_LOAD = -1 } ArcPlain; /* plain control: lambda advances by a fixed increment */
@@ -146,7 +147,7 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
 static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscInt *max_events, PetscBool *ok) {
   PDModel       *m     = a->m;
   const PetscInt maxit = 25;
-  PetscReal      dlam, rnorm, fnorm;
+  PetscReal      dlam, rnorm = PETSC_MAX_REAL, fnorm, damp = 1;
   PetscBool      fine;
 
   PetscFunctionBeginUser;
@@ -158,26 +159,41 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
   PetscCall(TangentAndDirection(a));
   PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
+  a->why = "no predictor meets the constraint";
   if (!fine) PetscFunctionReturn(0);
   PetscCall(VecAXPY(a->u, dlam, a->v));
   a->lam += dlam;
   /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
      soften together takes many grants, each a small perturbation Newton absorbs in a few iterations */
-  for (PetscInt k = 0, stages = 0; k < maxit; k++) {
+  for (PetscInt k = 0, stages = 0, rises = 0; k < maxit; k++) {
     PetscInt  n, ncand, granted;
-    PetscReal tol;
+    PetscReal tol, rprev = rnorm;
     PetscCall(Residual(a, &rnorm, &fnorm));
+    /* a bond whose stretch sits at its history flips between the loading branch (consistent slope) and
+       unloading (secant) from one iterate to the next, and Newton can cycle between two states; after
+       the residual has risen twice, updates are halved, which breaks the cycle */
+    if (k > 0 && rnorm > rprev && ++rises == 2) {
+      damp = 0.5;
+      PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: updates halved for the rest of the step\n", (double)rnorm));
+    }
+    a->why = "residual not finite";
     if (PetscIsInfOrNanReal(rnorm)) PetscFunctionReturn(0);
-    tol = 1e-8 * fnorm + 1e-12 * m->force_scale;
+    tol = m->scene->arc_rtol * fnorm + 1e-12 * m->force_scale;
+    PetscCall(PetscInfo(NULL, "arclength iteration %" PetscInt_FMT ": |R| %g, tolerance %g, lambda %.10g\n", k, (double)rnorm, (double)tol,
+                        (double)a->lam));
     if (rnorm <= tol) {
       PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));
+      PetscCall(PetscInfo(NULL, "arclength: %" PetscInt_FMT " of %" PetscInt_FMT " bond events granted\n", granted, ncand));
       *max_events = PetscMax(*max_events, granted);
       if (!granted) {
         *ok = PETSC_TRUE;
         PetscFunctionReturn(0);
       }
+      a->why = "more than 100,000 limiter stages";
       if (++stages > 100000) PetscFunctionReturn(0);
-      k = 0;
+      k     = 0; /* a new stage: full Newton steps again */
+      rises = 0;
+      damp  = 1;
       PetscCall(Residual(a, &rnorm, &fnorm));
     }
     PetscCall(TangentAndDirection(a));
@@ -189,14 +205,17 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     {
       KSPConvergedReason kr;
       PetscCall(KSPGetConvergedReason(a->ksp, &kr));
+      a->why = KSPConvergedReasons[kr];
       if (kr < 0) PetscFunctionReturn(0);
     }
     PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_FALSE, &dlam, &fine));
+    a->why = "the constraint has no real root";
     if (!fine) PetscFunctionReturn(0);
-    PetscCall(VecAXPY(a->u, 1, a->duI));
-    PetscCall(VecAXPY(a->u, dlam, a->v));
-    a->lam += dlam;
+    PetscCall(VecAXPY(a->u, damp, a->duI));
+    PetscCall(VecAXPY(a->u, damp * dlam, a->v));
+    a->lam += damp * dlam;
   }
+  a->why = "Newton iterations exhausted";
   PetscFunctionReturn(0);
 }
 
@@ -272,8 +291,9 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       PetscCall(PDModelRestoreLevels(m));
       if (type == ARC_LOAD ? dlam * 0.5 < sc->dlambda_min : dl * 0.5 < 1e-6 * dl0) {
         rec->converged = PETSC_FALSE;
-        PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g: %s %g at its floor", (double)path.lambda_n,
-                                type == ARC_LOAD ? "increment" : "arc length", (double)(type == ARC_LOAD ? dlam : dl)));
+        PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g: %s %g at its floor (%s)",
+                                (double)path.lambda_n, type == ARC_LOAD ? "increment" : "arc length",
+                                (double)(type == ARC_LOAD ? dlam : dl), a.why));
         break;
       }
       if (type == ARC_LOAD)
