@@ -96,7 +96,7 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
   case PD_ARC_CYLINDRICAL:
   case PD_ARC_SPHERICAL: {
     const PetscReal psi2 = type == PD_ARC_SPHERICAL ? a->psi2 : 0, Dl = a->lam - p->lambda_n;
-    PetscScalar     vv, vw, ww, vp = 1, wp = 1;
+    PetscScalar     vv, vw, ww, vp = 1;
     PetscReal       A, B, C, disc, r1, r2, s1, s2;
     PetscCall(VecDot(a->v, a->v, &vv));
     PetscCall(VecDot(a->v, a->w, &vw));
@@ -117,7 +117,6 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
       if (a->have_prev) PetscCall(VecDot(a->v, a->dprev, &vp));
       *dlam = PetscRealPart(vp) >= 0 ? PetscMax(r1, r2) : PetscMin(r1, r2);
     } else {
-      PetscCall(VecDot(a->w, a->w, &wp));
       s1    = PetscRealPart(ww) + r1 * PetscRealPart(vw) + psi2 * (Dl + r1) * Dl;
       s2    = PetscRealPart(ww) + r2 * PetscRealPart(vw) + psi2 * (Dl + r2) * Dl;
       *dlam = s1 >= s2 ? r1 : r2;
