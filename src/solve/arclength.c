@@ -17,7 +17,6 @@
 
 typedef struct {
   PDModel    *m;
-  PDRecord   *rec;
   Mat         J;
   KSP         ksp;
   Vec         u, fint, R, q, duI, v, w, dprev;
@@ -219,7 +218,8 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
 }
 
 /* The measure of a finished step in the constraint's units, to start the arc length from. */
-static PetscErrorCode StepLength(Arc *a, PDPath *p, Vec u_prev, PetscReal lam_prev, PetscReal d_prev, PetscInt type, PetscReal *dl) {
+static PetscErrorCode StepLength(Arc *a, PDPath *p, Vec u_prev, PetscReal lam_prev, const PDCurveRow *row, PetscReal d_prev, PetscInt type,
+                                 PetscReal *dl) {
   PDModel    *m = a->m;
   PetscScalar t;
 
@@ -237,11 +237,9 @@ static PetscErrorCode StepLength(Arc *a, PDPath *p, Vec u_prev, PetscReal lam_pr
     PetscCall(VecNorm(a->w, NORM_2, dl));
     *dl = PetscSqrtReal(*dl * *dl + a->psi2 * (p->lambda_n - lam_prev) * (p->lambda_n - lam_prev));
     break;
-  default: {
-    PetscReal st, ds;
-    PetscCall(PDModelEnergy(m, p->u_n, &st, &ds));
-    *dl = PetscMax(ds - d_prev, 1e-2 * st); /* dissipation: at least a hundredth of the stored energy */
-  } break;
+  default: /* dissipation: what the step released, at least a hundredth of the stored energy */
+    *dl = PetscMax(row->dissipated - d_prev, 1e-2 * row->stored);
+    break;
   }
   PetscFunctionReturn(0);
 }
@@ -259,8 +257,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&a, sizeof a));
-  a.m   = m;
-  a.rec = rec;
+  a.m = m;
   PetscCall(PDModelCreateMatrix(m, &a.J));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
@@ -308,10 +305,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     }
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
-    {
-      PetscReal st;
-      PetscCall(PDModelEnergy(m, path.u_n, &st, &d_prev));
-    }
+    d_prev   = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */
     PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, max_events);
     PetscCall(VecWAXPY(a.dprev, -1, u_prev, path.u_n));
@@ -321,7 +315,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     if (type == ARC_LOAD &&
         ((sc->control == PD_CONTROL_ARCLENGTH && sc->arc_type != PD_ARC_DISSIPATION) || m->softening_bonds > 0 || m->broken > 0)) {
       type = sc->arc_type;
-      PetscCall(StepLength(&a, &path, u_prev, lam_prev, d_prev, type, &dl));
+      PetscCall(StepLength(&a, &path, u_prev, lam_prev, &row, d_prev, type, &dl));
       if (sc->arc_initial > 0) dl = sc->arc_initial;
       dl0 = dl;
       PetscCall(
