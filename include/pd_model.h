@@ -25,6 +25,7 @@ typedef struct {
   unsigned char *level_n;                       /* levels at the last accepted step, to restart a step */
   PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
   PetscReal     *stretch;                       /* per-bond scratch of the limiter and the history update */
+  unsigned char *branch;                        /* path following: per-bond PDBranch frozen for a stage, or NULL */
   PetscInt       limiter_max;                   /* bond events granted per Newton iteration; 0: no cap */
   PetscBool      commit_history;                /* explicit path: every force evaluation raises kappa */
   PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
@@ -48,6 +49,15 @@ typedef struct {
   PetscReal      t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
 } PDModel;
 
+/* A softened bond's force has a kink at its largest stretch (softening beyond it, secant below it), and
+   Newton can cycle across it. Frozen on one branch, the force is smooth; path following freezes the
+   bonds that cycle and flips those that end up on the wrong side (see arclength.c). */
+typedef enum {
+  PD_BRANCH_FREE,     /* loading beyond the history, secant below it */
+  PD_BRANCH_SECANT,   /* secant at the committed history, whatever the stretch */
+  PD_BRANCH_ENVELOPE, /* the softening envelope at the current stretch, whatever the history */
+} PDBranch;
+
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
 PetscInt       PDModelEffects(const PDModel *, const char *names[5]);
@@ -62,6 +72,8 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
+PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);
+PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped);
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);

@@ -94,6 +94,8 @@ typedef struct {
   PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
   PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
   PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
+  PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
+  PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
   PDTangent  tangent;
   PetscInt   limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
   PetscInt   limiter_stage_its; /* Newton iterations between grants while events are pending */

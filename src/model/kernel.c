@@ -73,12 +73,20 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
     return;
   }
   {
-    const PDLawBond *t = Thresholds(m, e, law);
-    kap                = EffectiveHistory(m, e, law, t, s, &cap);
-    d                  = PDLawDamage(law, t, kap, &dd);
-    *g                 = c * (1 - d) * s;
+    const PDLawBond *t       = Thresholds(m, e, law);
+    PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
+    kap                      = EffectiveHistory(m, e, law, t, s, &cap);
+    if (m->branch && m->branch[e] == PD_BRANCH_SECANT) {
+      kap     = m->kappa[e];
+      loading = PETSC_FALSE;
+    } else if (m->branch && m->branch[e] == PD_BRANCH_ENVELOPE) {
+      kap     = s >= cap ? cap * (1 - 1e-12) : s;
+      loading = PETSC_TRUE;
+    }
+    d  = PDLawDamage(law, t, kap, &dd);
+    *g = c * (1 - d) * s;
     /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
-    if (m->scene->tangent == PD_TANGENT_CONSISTENT && s >= m->kappa[e] && s < cap)
+    if (m->scene->tangent == PD_TANGENT_CONSISTENT && loading && s < cap)
       *gp = c * ((1 - d) - s * dd);
     else
       *gp = c * (1 - d);

@@ -525,6 +525,20 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                              &sc->stop_fraction, NULL));
       PetscCheck(sc->stop_fraction >= 0 && sc->stop_fraction < 1, comm, PETSC_ERR_USER_INPUT,
                  "Option -pd_stop_fraction: must lie in [0, 1), got %g", (double)sc->stop_fraction);
+      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_unload_at",
+                             "After the peak, unload once the load falls to this fraction of the peak, then load again; 0: off",
+                             &sc->unload_at, NULL));
+      PetscCheck(sc->unload_at >= 0 && sc->unload_at < 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_unload_at: must lie in [0, 1), got %g",
+                 (double)sc->unload_at);
+      PetscCheck(
+          sc->unload_at == 0 || sc->arc_type != PD_ARC_DISSIPATION, comm, PETSC_ERR_USER_INPUT,
+          "Option -pd_unload_at: unloading dissipates nothing, so the dissipation constraint cannot follow it; use cmod, cylindrical "
+          "or spherical");
+      sc->reload_at = 0.02;
+      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_reload_at",
+                             "With -pd_unload_at: load again once the load falls to this fraction of the peak", &sc->reload_at, NULL));
+      PetscCheck(sc->reload_at >= 0 && (sc->unload_at == 0 || sc->reload_at < sc->unload_at), comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_reload_at: must lie in [0, -pd_unload_at), got %g", (double)sc->reload_at);
     }
     PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_tangent",
                            "Tangent of softening bonds: consistent (quadratic Newton, indefinite) or secant (positive)", PDTangentNames, 2,

@@ -16,17 +16,20 @@
 #include "path.h"
 
 typedef struct {
-  PDModel    *m;
-  Mat         J;
-  KSP         ksp;
-  Vec         u, fint, R, q, duI, v, w, dprev;
-  PetscReal   lam;
-  PetscReal   psi2;       /* spherical scaling of lambda */
-  PetscBool   have_prev;  /* dprev holds the last accepted step */
-  PetscInt    its, lits;  /* this step */
-  PetscInt    assemblies; /* for the preconditioner lag */
-  PetscBool   direct;     /* KSPPREONLY: no lag */
-  const char *why;        /* why the last step failed */
+  PDModel       *m;
+  Mat            J;
+  KSP            ksp;
+  Vec            u, fint, R, q, duI, v, w, dprev;
+  PetscReal      lam;
+  PetscReal      psi2;       /* spherical scaling of lambda */
+  PetscBool      have_prev;  /* dprev holds the last accepted step */
+  PetscInt       its, lits;  /* this step */
+  PetscInt       assemblies; /* for the preconditioner lag */
+  PetscBool      direct;     /* KSPPREONLY: no lag */
+  unsigned char *branch;     /* per-bond branches, frozen once Newton cycles at history kinks */
+  PetscReal      sign;       /* +1 along the path, -1 while unloading (cmod: the gauge closes) */
+  PetscBool      turn;       /* the next predictor goes against the last step (load reversal) */
+  const char    *why;        /* why the last step failed */
 } Arc;
 
 typedef enum { ARC_LOAD = -1 } ArcPlain; /* plain control: lambda advances by a fixed increment */
@@ -90,7 +93,7 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
     PetscCall(VecDot(m->cmod_pattern, a->v, &cv));
     PetscCall(VecDot(m->cmod_pattern, a->w, &cu));
     *ok   = PetscAbsScalar(cv) > 0 ? PETSC_TRUE : PETSC_FALSE;
-    *dlam = *ok ? (dl - PetscRealPart(cu)) / PetscRealPart(cv) : 0;
+    *dlam = *ok ? (a->sign * dl - PetscRealPart(cu)) / PetscRealPart(cv) : 0;
     break;
   case PD_ARC_CYLINDRICAL:
   case PD_ARC_SPHERICAL: {
@@ -114,6 +117,7 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
        first step loads), corrector by the angle with the current step */
     if (predictor) {
       if (a->have_prev) PetscCall(VecDot(a->v, a->dprev, &vp));
+      if (a->turn) vp = -vp;
       *dlam = PetscRealPart(vp) >= 0 ? PetscMax(r1, r2) : PetscMin(r1, r2);
     } else {
       s1    = PetscRealPart(ww) + r1 * PetscRealPart(vw) + psi2 * (Dl + r1) * Dl;
@@ -163,22 +167,52 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   a->lam += dlam;
   /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
      soften together takes many grants, each a small perturbation Newton absorbs in a few iterations */
-  for (PetscInt k = 0, stages = 0, rises = 0; k < maxit; k++) {
+  for (PetscInt k = 0, stages = 0, rises = 0, flips = 0; k < maxit; k++) {
     PetscInt  n, ncand, granted;
     PetscReal tol, rprev = rnorm;
     PetscCall(Residual(a, &rnorm, &fnorm));
     /* a bond whose stretch sits at its history flips between the loading branch (consistent slope) and
-       unloading (secant) from one iterate to the next, and Newton can cycle between two states; after
-       the residual has risen twice, updates are halved, which breaks the cycle */
+       unloading (secant) from one iterate to the next, and Newton can cycle between two states. After
+       the residual has risen twice, every softened bond is frozen on its current branch, which makes
+       the equations smooth; if it still rises, updates are halved */
     if (k > 0 && rnorm > rprev && ++rises == 2) {
-      damp = 0.5;
-      PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: updates halved for the rest of the step\n", (double)rnorm));
+      PetscInt nfrozen;
+      if (!m->branch && a->branch) {
+        PetscCall(PDModelFreezeBranches(m, a->u, a->branch, &nfrozen));
+        PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: %" PetscInt_FMT " softened bonds frozen on their branch\n",
+                            (double)rnorm, nfrozen));
+        PetscCall(Residual(a, &rnorm, &fnorm));
+        rises = 0;
+      } else {
+        damp = 0.5;
+        PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: updates halved for the rest of the step\n", (double)rnorm));
+      }
     }
     a->why = "residual not finite";
     if (PetscIsInfOrNanReal(rnorm)) PetscFunctionReturn(0);
     tol = m->scene->arc_rtol * fnorm + 1e-12 * m->force_scale;
     PetscCall(PetscInfo(NULL, "arclength iteration %" PetscInt_FMT ": |R| %g, tolerance %g, lambda %.10g\n", k, (double)rnorm, (double)tol,
                         (double)a->lam));
+    if (rnorm <= tol && m->branch) {
+      /* equilibrium on frozen branches: it holds for the real law once every bond is on the side of its
+         history its branch assumes; otherwise the bonds on the wrong side change branch and Newton goes on */
+      PetscInt  nflipped;
+      PetscReal rfree;
+      m->branch = NULL;
+      PetscCall(Residual(a, &rfree, &fnorm));
+      if (rfree > tol) {
+        m->branch = a->branch;
+        PetscCall(PDModelFlipBranches(m, a->u, &nflipped));
+        PetscCall(PetscInfo(NULL, "arclength: frozen branches in equilibrium, real law |R| %g: %" PetscInt_FMT " bonds change branch\n",
+                            (double)rfree, nflipped));
+        a->why = "frozen branches do not settle";
+        if (!nflipped || ++flips > 30) PetscFunctionReturn(0);
+        k     = 0;
+        rises = 0;
+        PetscCall(Residual(a, &rnorm, &fnorm));
+      } else
+        rnorm = rfree;
+    }
     if (rnorm <= tol) {
       PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));
       PetscCall(PetscInfo(NULL, "arclength: %" PetscInt_FMT " of %" PetscInt_FMT " bond events granted\n", granted, ncand));
@@ -253,11 +287,14 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PC             pc;
   PetscInt       type = ARC_LOAD; /* the first step, and plain control until softening under auto */
   PetscReal      dl = 0, dl0 = 0, dlam = sc->lambda_max / sc->steps, peak = 0, lam_prev = 0, d_prev = 0;
-  const PetscInt maxsteps = 20 * sc->steps;
+  const PetscInt maxsteps   = 20 * sc->steps;
+  PetscInt       reversal   = 0;                /* 0 not yet, 1 unloading, 2 reloading, 3 back on the envelope */
+  PetscReal      gauge_turn = 0, peak_sign = 1; /* CMOD (else load-point displacement) where the path turned */
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&a, sizeof a));
-  a.m = m;
+  a.m    = m;
+  a.sign = 1;
   PetscCall(PDModelCreateMatrix(m, &a.J));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
@@ -266,6 +303,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDuplicate(m->f_ref, work[k]));
   }
   PetscCall(PDPathCreate(m, &path));
+  if (m->softening) PetscCall(PetscMalloc1(PetscMax(1, m->bonds->nbonds), &a.branch));
   PetscCall(KSPCreate(comm, &a.ksp));
   PetscCall(PDSolverConfigureKSP(m, a.ksp));
   PetscCall(KSPSetTolerances(a.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
@@ -281,6 +319,8 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     PetscReal  len = type == ARC_LOAD ? PetscMin(dlam, sc->lambda_max - path.lambda_n) : dl;
 
     PetscCall(Step(&a, &path, type, len, &max_events, &ok));
+    m->branch = NULL; /* a step ends with the real law */
+    if (ok) a.turn = PETSC_FALSE;
     rec->newton_its += a.its;
     rec->ksp_its += a.lits;
     if (!ok) {
@@ -325,11 +365,32 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       dl = PetscMax(1e-3 * dl0, PetscMin(cap * dl0, dl * PetscMax(0.5, PetscMin(2, f))));
     } else if (a.its <= 3)
       dlam = PetscMin(2 * dlam, sc->dlambda_max);
-    peak = PetscMax(peak, PetscAbsReal(row.load));
+    if (PetscAbsReal(row.load) > peak) {
+      peak      = PetscAbsReal(row.load);
+      peak_sign = row.load < 0 ? -1 : 1;
+    }
+    /* load reversal: unload once the load has fallen to unload_at of the peak (before the peak the
+       load is the peak), load again at reload_at, back on the envelope once the gauge (or the load point) passes
+       where the path turned; the turning steps go against the last step's direction */
+    if (sc->unload_at > 0 && type != ARC_LOAD) {
+      const PetscReal f = peak_sign * row.load / peak; /* negative once unloading overshoots */
+      if (reversal == 1 && f > sc->reload_at && rec->nrows > 1) {
+        /* unloading is elastic and nearly linear: aim the next step at reload_at instead of past it */
+        const PetscReal rate = PetscAbsReal(row.load - rec->rows[rec->nrows - 2].load) / len;
+        if (rate > 0) dl = PetscMin(dl, PetscMax(1e-3 * dl0, 1.05 * (f - sc->reload_at) * peak / rate));
+      }
+      if ((reversal == 0 && f < sc->unload_at) || (reversal == 1 && f <= sc->reload_at)) {
+        a.sign = reversal == 0 ? -1 : 1;
+        a.turn = PETSC_TRUE;
+        if (reversal++ == 0) gauge_turn = sc->has_cmod ? row.cmod : row.disp;
+        PetscCall(PetscInfo(NULL, "load reversal at %.6e N: %s\n", (double)row.load, reversal == 1 ? "unloading" : "reloading"));
+      } else if (reversal == 2 && (sc->has_cmod ? row.cmod : row.disp) > gauge_turn)
+        reversal = 3;
+    }
     if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
-    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak) {
+    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak && reversal != 1 && reversal != 2) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
                               (double)sc->stop_fraction, (double)peak));
@@ -359,5 +420,6 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));
   }
   PetscCall(PDPathDestroy(&path));
+  PetscCall(PetscFree(a.branch));
   PetscFunctionReturn(0);
 }

@@ -150,6 +150,57 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   PetscFunctionReturn(0);
 }
 
+/* A bond is softened when its history lies on the softening branch (s0 < kappa_n < sc): only then does
+   its force have a kink at kappa_n (below s0 envelope and secant coincide). */
+static PetscBool Softened(const PDModel *m, PetscInt e) {
+  const PDLaw     *law = &m->law[m->bonds->material[e]];
+  const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+  return law->kind != PD_LAW_ELASTIC && law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0 && m->kappa[e] < t->sc ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Freezes every softened bond on the branch its stretch at u lies on; the others stay free. */
+PetscErrorCode PDModelFreezeBranches(PDModel *m, Vec u, unsigned char *branch, PetscInt *nfrozen) {
+  PetscInt mine = 0;
+
+  PetscFunctionBeginUser;
+  m->branch = NULL;
+  PetscCall(StretchesAt(m, u, m->stretch));
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+    branch[e] = PD_BRANCH_FREE;
+    if (!Softened(m, e)) continue;
+    branch[e] = m->stretch[e] >= m->kappa[e] ? PD_BRANCH_ENVELOPE : PD_BRANCH_SECANT;
+    if (PDBondCountedHere(m->lat, m->bonds, e)) mine++;
+  }
+  PetscCall(MPIU_Allreduce(&mine, nfrozen, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  m->branch = branch;
+  PetscFunctionReturn(0);
+}
+
+/* Moves frozen bonds whose stretch at u lies on the other side of their history to that side's branch:
+   an envelope bond unloading below kappa_n goes secant, a secant bond stretched past kappa_n loads. */
+PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped) {
+  unsigned char *branch = m->branch;
+  PetscInt       mine   = 0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(branch, m->lat->comm, PETSC_ERR_ORDER, "no frozen branches to flip");
+  PetscCall(StretchesAt(m, u, m->stretch));
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+    const PetscReal s = m->stretch[e], k = m->kappa[e];
+    PDBranch        to;
+    if (branch[e] == PD_BRANCH_SECANT && s > k)
+      to = PD_BRANCH_ENVELOPE;
+    else if (branch[e] == PD_BRANCH_ENVELOPE && s < k)
+      to = PD_BRANCH_SECANT;
+    else
+      continue;
+    branch[e] = (unsigned char)to;
+    if (PDBondCountedHere(m->lat, m->bonds, e)) mine++;
+  }
+  PetscCall(MPIU_Allreduce(&mine, nflipped, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDModelRestoreLevels(PDModel *m) {
   PetscFunctionBeginUser;
   if (m->softening) PetscCall(PetscArraycpy(m->level, m->level_n, m->bonds->nbonds));
