@@ -5,6 +5,7 @@
 PetscReal PDMicromodulus(const PDScene *, PetscReal E);
 PetscReal PDInfluenceValue(PDInfluence, PetscReal len, PetscReal horizon);
 PetscReal PDInfluenceMoment(PDInfluence, PetscInt k); /* int_0^1 omega(r) r^k dr */
+PetscReal PDLatticeFractureRatio(const PDScene *);
 
 /* Bond states the damage limiter hands out one level at a time. */
 typedef enum { PD_BOND_ELASTIC = 0, PD_BOND_SOFTENING = 1, PD_BOND_BROKEN = 2 } PDBondLevel;

@@ -85,6 +85,7 @@ typedef struct {
   PDKinematics kinematics;
   PDStretch    stretch;
   PetscBool    sc_correction;    /* per-bond critical stretch from lambda_ij c */
+  PetscBool    gf_lattice;       /* critical stretches from the lattice's own crack-plane bond sum, not the continuum */
   PetscReal    strength_scatter; /* per-bond tensile strength f_t (1 + r xi), xi uniform in [-1, 1] by bond id; 0: none */
   PDControl    control;
   /* path following (-pd_control arclength|auto) */

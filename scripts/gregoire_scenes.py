@@ -36,6 +36,11 @@ def scene(D, kind, dim, dx):
     lines += ["-pd_dx %g" % dx, "-pd_E 37e9", "-pd_rho 2346", "-pd_law nonlinear", "-pd_ft 3.9e6", "-pd_Gf 143.2"]
     if a > 0:
         lines += ["-pd_notch0_box " + box(xm, xm, 0, a * D)]
+    else:
+        # a homogeneous unnotched beam has no preferred crack site: past the peak, diffuse damage must pick
+        # one (a bifurcation that path following cannot cross, docs/arclength.md); a 5 % scatter of the
+        # bond strength, as in concrete, picks it
+        lines += ["-pd_strength_scatter 0.05"]
     lines += ["# supports on the bottom face (left pinned, right a roller), load on the top face, each 0.05 D wide",
               "-pd_region0_box " + box(x0 - w, x0 + w, 0, 0), "-pd_region0_kind support",
               "-pd_region0_dofs " + ("x,y,z" if dim == 3 else "x,y"),

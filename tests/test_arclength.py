@@ -1,9 +1,15 @@
-"""Path following (-pd_control arclength|auto): constraints, separation, energy balance.
-Usage: test_arclength.py constraints|separation"""
+"""Path following (-pd_control arclength|auto) and the hard cases: constraints, separation, snap-back,
+load reversal, stiffness contrast, step size, limiter extremes, MPI determinism, energy balance.
+Usage: test_arclength.py constraints|separation|snapback|reversal|contrast|stepsize|limiter|mpi"""
 import math
 import sys
 
 from pdtest import check, rel, run
+
+HN2D = "gregoire_d200_hn_2d"
+UN2D = "gregoire_d400_un_2d"
+LIGAMENT = 0.1 * 0.05  # m^2, D = 200 mm half-notched, thickness 50 mm
+GF = 143.2
 
 HN10 = ["-pd_dx", "0.01"]
 
@@ -55,5 +61,125 @@ def separation():
     check(its < 100, "linear solves stay cheap to the end: %.0f KSP iterations per Newton iteration (< 100)" % its)
 
 
+def interp(c, x, key="cmod_m", val="load_N"):
+    """Value on a curve at x of a monotone stretch of rows (linear between neighbours)."""
+    for a, b in zip(c, c[1:]):
+        if (a[key] - x) * (b[key] - x) <= 0 and a[key] != b[key]:
+            return a[val] + (b[val] - a[val]) * (x - a[key]) / (b[key] - a[key])
+    return float("nan")
+
+
+def at_fraction(r, f, val="dissipated_J"):
+    """A curve value where the load, past the peak, first falls to f times the peak (linear between rows)."""
+    c, p = r.curve, r.summary["peak_load_N"]
+    k = max(range(len(c)), key=lambda i: c[i]["load_N"])
+    return interp(c[k:], f * p, key="load_N", val=val)
+
+
+def snapback():
+    # 2D unnotched D = 400 mm beam (5 % bond strength scatter). CMOD control passes the limit point, traces
+    # the snap-back (load-point displacement going back) and goes on to below 10 % of the peak.
+    r = run(UN2D, "-pd_control", "arclength", "-pd_stop_fraction", "0.08")
+    s, c = r.summary, r.curve
+    check(s["converged"] and s["status"].startswith("separated"), "arc length: %s" % s["status"])
+    check(c[-1]["load_N"] < 0.1 * s["peak_load_N"], "final load %.0f N below 10 %% of the peak %.0f N" % (c[-1]["load_N"], s["peak_load_N"]))
+    k = max(range(len(c)), key=lambda i: c[i]["load_N"])
+    back = c[k]["disp_m"] - min(x["disp_m"] for x in c[k:])
+    check(back > 0.05 * c[k]["disp_m"], "snap-back: after the peak the load point moves back by %.1f %% of its peak displacement (> 5 %%)"
+          % (100 * back / c[k]["disp_m"]))
+    common("snap-back", r)
+    # plain displacement control cannot pass the snap-back: measured, it stops at the peak
+    d = run(UN2D, "-pd_control", "displacement")
+    ds, dc = d.summary, d.curve
+    drops = [a["load_N"] - b["load_N"] for a, b in zip(dc, dc[1:])]
+    check(not ds["converged"] and ds["status"].startswith("diverged"),
+          "displacement control stops with status diverged (%s); largest one-step drop %.0f N" % (ds["status"], max(drops + [0])))
+    check(rel(ds["peak_load_N"], s["peak_load_N"]) < 0.05,
+          "it stops at the limit point: %.0f N against the arc-length peak %.0f N (5 %%)" % (ds["peak_load_N"], s["peak_load_N"]))
+
+
+def reversal():
+    # Half-notched 2D beam unloaded at half the peak (post-peak) to 2 % of it, then reloaded.
+    r = run(HN2D, "-pd_control", "arclength", "-pd_unload_at", "0.5", "-pd_stop_fraction", "0.3")
+    m = run(HN2D, "-pd_control", "arclength", "-pd_stop_fraction", "0.3")
+    c, p = r.curve, r.summary["peak_load_N"]
+    check(r.summary["converged"] and r.summary["status"].startswith("separated"), "status: %s" % r.summary["status"])
+    common("reversal", r)
+    check(all(b["dissipated_J"] >= a["dissipated_J"] * (1 - 1e-12) for a, b in zip(c, c[1:])), "dissipated energy never decreases")
+    t = next(i for i in range(1, len(c)) if c[i]["cmod_m"] < c[i - 1]["cmod_m"]) - 1  # where the path turned
+    lo = min(range(t, len(c)), key=lambda i: c[i]["cmod_m"])
+    back = next(i for i in range(lo, len(c)) if c[i]["cmod_m"] > c[t]["cmod_m"])
+    check(c[t]["load_N"] < 0.5 * p and c[t]["load_N"] > 0.4 * p, "turned at %.0f N, half the peak %.0f N" % (c[t]["load_N"], p))
+    check(c[lo]["load_N"] <= 0.02 * p, "unloaded to %.1f N (2 %% of the peak)" % c[lo]["load_N"])
+    # unloading and reloading are elastic on the secant: no damage, load proportional to the opening
+    dd = max(abs(x["dissipated_J"] - c[t]["dissipated_J"]) for x in c[t:back]) / c[t]["dissipated_J"]
+    check(dd < 1e-9, "no energy dissipated while unloading and reloading (relative change %.1e)" % dd)
+    k = c[t]["load_N"] / c[t]["cmod_m"]
+    dev = max(abs(x["load_N"] - k * x["cmod_m"]) for x in c[t:back]) / c[t]["load_N"]
+    check(dev < 0.02, "unloading and reloading follow the secant through the origin within %.1e of the turning load (2e-2)" % dev)
+    # past the turning point the curve is the monotonic one again
+    worst = max(abs(x["load_N"] - interp(m.curve, x["cmod_m"])) / interp(m.curve, x["cmod_m"]) for x in c[back:])
+    check(worst < 0.02, "reloading rejoins the monotonic envelope within %.2f %% (2 %%) over %d rows" % (100 * worst, len(c) - back))
+
+
+def contrast():
+    # Steel-like loading plates 1000 times stiffer than the concrete under the load and on the supports.
+    plates = []
+    for k, box in enumerate(("0.08,0,0.12,0.01", "0.58,0,0.62,0.01", "0.33,0.19,0.37,0.2"), start=1):
+        plates += ["-pd_material%d_box" % k, box, "-pd_material%d_E" % k, "37e12", "-pd_material%d_law" % k, "elastic"]
+    base = run(HN2D, "-pd_control", "arclength", "-pd_stop_fraction", "0.3")
+    r = run(HN2D, "-pd_control", "arclength", "-pd_stop_fraction", "0.3", *plates)
+    check(r.summary["converged"] and r.summary["status"].startswith("separated"), "with plates: %s" % r.summary["status"])
+    common("plates", r)
+    per = lambda x: x.summary["newton_its"] / len(x.curve)
+    check(per(r) < 2 * per(base), "Newton iterations per step %.2f with plates against %.2f without (within a factor 2)" % (per(r), per(base)))
+    kit = lambda x: x.summary["ksp_its"] / max(1, x.summary["newton_its"])
+    print("     KSP iterations per Newton iteration: %.0f with plates, %.0f without" % (kit(r), kit(base)))
+
+
+def stepsize():
+    # Halving the arc length (first and largest) moves the peak by < 1 % and the dissipated energy at
+    # separation (interpolated where the load falls to 2 % of the peak) by < 3 %.
+    runs = [run(HN2D, "-pd_control", "arclength", "-pd_arclength_initial", dl, "-pd_stop_fraction", "0.015") for dl in ("8e-6", "4e-6")]
+    for r in runs:
+        check(r.summary["converged"], "status: %s" % r.summary["status"])
+    a, b = runs
+    pa, pb = a.summary["peak_load_N"], b.summary["peak_load_N"]
+    check(rel(pa, pb) < 0.01, "peak %.1f N against %.1f N with half the arc length (%.2f %%, < 1 %%)" % (pa, pb, 100 * rel(pa, pb)))
+    da, db = at_fraction(a, 0.02), at_fraction(b, 0.02)
+    check(rel(da, db) < 0.03, "dissipated at separation %.4f J against %.4f J (%.2f %%, < 3 %%)" % (da, db, 100 * rel(da, db)))
+    check(len(b.curve) > 1.5 * len(a.curve), "the halved arc length takes more steps (%d against %d)" % (len(b.curve), len(a.curve)))
+
+
+def limiter():
+    # One bond event per Newton iteration on the 2D half-notched beam, to separation (2 % of the peak).
+    # The energy the crack released against fracture energy times ligament area. The lattice, cut at the
+    # horizon, releases across a plane only lattice_fracture_ratio (0.74 at delta = pi dx in 2D) of the
+    # continuum G_F the thesis calibrates against; -pd_gf_lattice calibrates against the lattice itself.
+    r = run(HN2D, "-pd_control", "arclength", "-pd_limiter_max_bonds", "1", "-pd_gf_lattice")
+    s = r.summary
+    check(s["converged"] and s["status"].startswith("separated"), "N = 1: %s" % s["status"])
+    check(s["max_bonds_per_iteration"] <= 1, "at most one bond event per iteration (%d)" % s["max_bonds_per_iteration"])
+    common("N = 1", r)
+    ratio = r.curve[-1]["dissipated_J"] / (GF * LIGAMENT)
+    check(abs(ratio - 1) < 0.15, "dissipated %.4f J = %.3f G_F A at separation (within 15 %%)" % (r.curve[-1]["dissipated_J"], ratio))
+
+
+def mpi():
+    # The 2D snap-back through the limit point to half the peak with 2 ranks against one. The limiter and
+    # the branch flips decide by global bond id, so the sequence of events does not depend on the
+    # partition; what remains is round-off, and the linear solves are tight enough for it to stay there.
+    opts = ["-pd_control", "arclength", "-pd_stop_fraction", "0.5", "-ksp_rtol", "1e-12", "-pd_arclength_rtol", "1e-10"]
+    one = run(UN2D, *opts)
+    two = run(UN2D, *opts, ranks=2)
+    a, b = one.curve, two.curve
+    check(len(a) == len(b), "same number of steps (%d, %d)" % (len(a), len(b)))
+    worst = max(max(abs(x[k] - y[k]) / max(abs(z[k]) for z in a) for k in ("load_N", "disp_m", "cmod_m")) for x, y in zip(a, b))
+    check(worst < 1e-8, "2 ranks reproduce one rank: largest difference %.1e of the largest value (< 1e-8)" % worst)
+    check(min(x["disp_m"] for x in a[a.index(max(a, key=lambda x: x["load_N"])):]) < max(x["disp_m"] for x in a),
+          "the compared stretch contains the snap-back")
+
+
 if __name__ == "__main__":
-    {"constraints": constraints, "separation": separation}[sys.argv[1]]()
+    {"constraints": constraints, "separation": separation, "snapback": snapback, "reversal": reversal, "contrast": contrast,
+     "stepsize": stepsize, "limiter": limiter, "mpi": mpi}[sys.argv[1]]()

@@ -39,13 +39,14 @@ static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
   PetscCall(PetscFPrintf(comm, fp, "],\n"));
   {
     const PDLaw *law = &m->law[0];
-    PetscCall(PetscFPrintf(comm, fp,
-                           "  \"law\": {\"name\": \"%s\", \"s0\": %.6e, \"s1\": %.6e, \"sc\": %.6e, \"ft_Pa\": %.6e, \"Gf_N_per_m\": %.6e, "
-                           "\"tangent\": \"%s\", \"limiter_max_bonds\": %" PetscInt_FMT "},\n",
-                           PDLawNames[law->kind], (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s0),
-                           (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s1),
-                           (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.sc), (double)law->ft, (double)law->Gf,
-                           PDTangentNames[sc->tangent], m->limiter_max));
+    PetscCall(PetscFPrintf(
+        comm, fp,
+        "  \"law\": {\"name\": \"%s\", \"s0\": %.6e, \"s1\": %.6e, \"sc\": %.6e, \"ft_Pa\": %.6e, \"Gf_N_per_m\": %.6e, "
+        "\"lattice_fracture_ratio\": %.6f, \"gf_lattice\": %s, \"tangent\": \"%s\", \"limiter_max_bonds\": %" PetscInt_FMT "},\n",
+        PDLawNames[law->kind], (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s0),
+        (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.s1), (double)(law->kind == PD_LAW_ELASTIC ? 0 : law->nominal.sc),
+        (double)law->ft, (double)law->Gf, (double)PDLatticeFractureRatio(sc), sc->gf_lattice ? "true" : "false",
+        PDTangentNames[sc->tangent], m->limiter_max));
   }
   {
     /* discretisation corrections in force; the critical-stretch one only where a law has a critical stretch */

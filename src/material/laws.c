@@ -69,6 +69,7 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) 
     geo = PETSC_PI * law->c * PDInfluenceMoment(sc->influence, 4) * PetscPowReal(delta, 5);
   else
     geo = 2 * sc->thickness * law->c * PDInfluenceMoment(sc->influence, 3) * PetscPowReal(delta, 4);
+  if (sc->gf_lattice) geo *= PDLatticeFractureRatio(sc);
   law->geo = geo;
   Thresholds(law, 5 * geo, &t);
   law->nominal = t;

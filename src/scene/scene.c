@@ -417,6 +417,11 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
              "Option -pd_strength_scatter: must lie in [0, 1), got %g", (double)sc->strength_scatter);
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction",
                          "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)", &sc->sc_correction, NULL));
+  PetscCall(
+      PDOptionBool(PetscOptionsObject, "-pd_gf_lattice",
+                   "Critical stretches such that a crack plane of the lattice releases G_F (default: the continuum integral of the thesis, "
+                   "which the lattice, cut at the horizon, reaches only in part)",
+                   &sc->gf_lattice, NULL));
 
   sc->nmaterials = 1;
   PetscCall(ReadMaterial(PetscOptionsObject, sc, 0));
