@@ -26,6 +26,21 @@ int main(int argc, char **argv) {
   sc.model = PD_MODEL_PLANE_STRAIN;
   CheckRel("plane strain c = 48E/(5 pi t d^3)", PDMicromodulus(&sc, E), 48 * E / (5 * PETSC_PI * t * d * d * d), 1e-12);
 
+  /* fracture energy across a lattice plane over the continuum integral (docs/arclength.md): values at
+     delta = pi dx from an independent count in Python; the continuum is approached as delta/dx grows */
+  sc.model          = PD_MODEL_PLANE_STRESS;
+  sc.dim            = 2;
+  sc.partial_volume = PETSC_TRUE;
+  sc.horizon_ratio  = PETSC_PI;
+  CheckRel("2D lattice fracture ratio at pi dx", PDLatticeFractureRatio(&sc), 0.7436490012, 1e-9);
+  sc.horizon_ratio = 30.5;
+  CheckRel("2D lattice fracture ratio at 30.5 dx -> 1", PDLatticeFractureRatio(&sc), 1, 0.02);
+  sc.model         = PD_MODEL_3D;
+  sc.dim           = 3;
+  sc.horizon_ratio = PETSC_PI;
+  CheckRel("3D lattice fracture ratio at pi dx", PDLatticeFractureRatio(&sc), 0.7607711772, 1e-9);
+  sc.horizon_ratio = m;
+
   CheckRel("conical omega(d/2) = 1/2", PDInfluenceValue(PD_INFLUENCE_CONICAL, d / 2, d), 0.5, 1e-14);
   CheckRel("quartic omega(d/2) = 9/16", PDInfluenceValue(PD_INFLUENCE_QUARTIC, d / 2, d), 9.0 / 16.0, 1e-14);
   Check(PDInfluenceValue(PD_INFLUENCE_QUARTIC, d, d) == 0 ? PETSC_TRUE : PETSC_FALSE, "quartic omega(d) = 0",
