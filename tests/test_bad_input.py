@@ -30,6 +30,9 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_dt_safety", "0"], "-pd_dt_safety"),
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_damping", "-5"], "-pd_damping"),
     ("gregoire_d50_hn", ["-pd_mode", "dynamic"], "-pd_mode"),
+    ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_unload_at", "1.5"], "-pd_unload_at"),
+    ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_type", "dissipation", "-pd_unload_at", "0.5"], "-pd_unload_at"),
+    ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_unload_at", "0.5", "-pd_reload_at", "0.6"], "-pd_reload_at"),
 ]
 
 
