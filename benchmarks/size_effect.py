@@ -39,7 +39,8 @@ def scene_args(D, kind, dx):
     args = ["-options_file", os.path.join(ROOT, "options", "gregoire_d%d_%s.opts" % (D, kind)), "-pd_dx", str(dx), "-pd_control",
             "arclength", "-pd_stop_fraction", "0.1"]
     if D == 50:
-        args += ["-pd_stop_cmod", "0", "-pd_lambda_max", "20"]
+        # the path may run past the scene's load factor 1; the first step (lambda_max / steps) stays the scene's
+        args += ["-pd_stop_cmod", "0", "-pd_lambda_max", "4", "-pd_steps", "800"]
         if kind == "un":
             args += ["-pd_strength_scatter", "0.05"]
     return args
@@ -132,9 +133,12 @@ def main():
     ap.add_argument("--sizes", default="50,100,200,400")
     ap.add_argument("--kinds", default="un,fn,hn")
     ap.add_argument("--timeout", type=float, default=7200)
+    ap.add_argument("--redo", default="", help="comma-separated result keys to run again")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
     res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
+    for k in filter(None, a.redo.split(",")):
+        res.pop(k, None)
     if not a.report:
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
                 if key(D, kind, float(dx)) not in res]

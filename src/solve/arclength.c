@@ -12,7 +12,9 @@
    The damage limiter grants bond events between converged iterations as under plain control; the arc
    length adapts to the iteration count and is cut on failure. Under -pd_control auto (and always for
    the dissipation constraint, which is singular while nothing dissipates) the region's plain control
-   runs until the first bond softens. */
+   runs until the first bond softens. Newton cycling at the kink of softened bonds (loading beyond their
+   largest stretch, secant below it) is settled by freezing their branches (see Step); -pd_unload_at
+   turns the path for unloading and reloading (LoadReversal). */
 #include "path.h"
 
 typedef struct {
@@ -278,6 +280,38 @@ static PetscErrorCode StepLength(Arc *a, PDPath *p, Vec u_prev, PetscReal lam_pr
   PetscFunctionReturn(0);
 }
 
+/* Load reversal (-pd_unload_at): where a path is, given the accepted step's row. */
+typedef struct {
+  PetscInt  phase;      /* 0 not yet, 1 unloading, 2 reloading, 3 back on the envelope */
+  PetscReal gauge_turn; /* CMOD (else load-point displacement) where the path turned */
+} Reversal;
+
+/* Unload once the load has fallen to unload_at of the peak (before the peak the load is the peak), load
+   again at reload_at, back on the envelope once the gauge (or the load point) passes where the path
+   turned. The turning steps go against the last step's direction; while unloading, which is elastic and
+   nearly linear, the arc length is aimed at reload_at from the last step's load rate instead of past it
+   (into reversed bending). */
+static PetscErrorCode LoadReversal(Arc *a, Reversal *rev, const PDRecord *rec, const PDCurveRow *row, PetscReal peak, PetscReal peak_sign,
+                                   PetscReal len, PetscReal dl0, PetscReal *dl) {
+  const PDScene  *sc    = a->m->scene;
+  const PetscReal f     = peak_sign * row->load / peak; /* negative once unloading overshoots */
+  const PetscReal gauge = sc->has_cmod ? row->cmod : row->disp;
+
+  PetscFunctionBeginUser;
+  if (rev->phase == 1 && f > sc->reload_at && rec->nrows > 1) {
+    const PetscReal rate = PetscAbsReal(row->load - rec->rows[rec->nrows - 2].load) / len;
+    if (rate > 0) *dl = PetscMin(*dl, PetscMax(1e-3 * dl0, 1.05 * (f - sc->reload_at) * peak / rate));
+  }
+  if ((rev->phase == 0 && f < sc->unload_at) || (rev->phase == 1 && f <= sc->reload_at)) {
+    a->sign = rev->phase == 0 ? -1 : 1;
+    a->turn = PETSC_TRUE;
+    if (rev->phase++ == 0) rev->gauge_turn = gauge;
+    PetscCall(PetscInfo(NULL, "load reversal at %.6e N: %s\n", (double)row->load, rev->phase == 1 ? "unloading" : "reloading"));
+  } else if (rev->phase == 2 && gauge > rev->gauge_turn)
+    rev->phase = 3;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
@@ -287,9 +321,9 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PC             pc;
   PetscInt       type = ARC_LOAD; /* the first step, and plain control until softening under auto */
   PetscReal      dl = 0, dl0 = 0, dlam = sc->lambda_max / sc->steps, peak = 0, lam_prev = 0, d_prev = 0;
-  const PetscInt maxsteps   = 20 * sc->steps;
-  PetscInt       reversal   = 0;                /* 0 not yet, 1 unloading, 2 reloading, 3 back on the envelope */
-  PetscReal      gauge_turn = 0, peak_sign = 1; /* CMOD (else load-point displacement) where the path turned */
+  const PetscInt maxsteps  = 20 * sc->steps;
+  PetscReal      peak_sign = 1;
+  Reversal       rev       = {0, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&a, sizeof a));
@@ -369,28 +403,11 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       peak      = PetscAbsReal(row.load);
       peak_sign = row.load < 0 ? -1 : 1;
     }
-    /* load reversal: unload once the load has fallen to unload_at of the peak (before the peak the
-       load is the peak), load again at reload_at, back on the envelope once the gauge (or the load point) passes
-       where the path turned; the turning steps go against the last step's direction */
-    if (sc->unload_at > 0 && type != ARC_LOAD) {
-      const PetscReal f = peak_sign * row.load / peak; /* negative once unloading overshoots */
-      if (reversal == 1 && f > sc->reload_at && rec->nrows > 1) {
-        /* unloading is elastic and nearly linear: aim the next step at reload_at instead of past it */
-        const PetscReal rate = PetscAbsReal(row.load - rec->rows[rec->nrows - 2].load) / len;
-        if (rate > 0) dl = PetscMin(dl, PetscMax(1e-3 * dl0, 1.05 * (f - sc->reload_at) * peak / rate));
-      }
-      if ((reversal == 0 && f < sc->unload_at) || (reversal == 1 && f <= sc->reload_at)) {
-        a.sign = reversal == 0 ? -1 : 1;
-        a.turn = PETSC_TRUE;
-        if (reversal++ == 0) gauge_turn = sc->has_cmod ? row.cmod : row.disp;
-        PetscCall(PetscInfo(NULL, "load reversal at %.6e N: %s\n", (double)row.load, reversal == 1 ? "unloading" : "reloading"));
-      } else if (reversal == 2 && (sc->has_cmod ? row.cmod : row.disp) > gauge_turn)
-        reversal = 3;
-    }
+    if (sc->unload_at > 0 && type != ARC_LOAD) PetscCall(LoadReversal(&a, &rev, rec, &row, peak, peak_sign, len, dl0, &dl));
     if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
-    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak && reversal != 1 && reversal != 2) {
+    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak && rev.phase != 1 && rev.phase != 2) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
                               (double)sc->stop_fraction, (double)peak));
