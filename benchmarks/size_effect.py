@@ -17,6 +17,7 @@ import math
 import os
 import subprocess
 import tempfile
+import threading
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -54,16 +55,20 @@ def run_one(D, kind, dx, timeout):
     out = tempfile.mkdtemp(prefix="pdsize_")
     cmd = [EXE] + scene_args(D, kind, dx) + ["-pd_output_dir", out]
     t0 = time.time()
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        return {"status": "stopped after %d s" % timeout, "wall": timeout}
-    r = {"wall": time.time() - t0, "returncode": p.returncode, "command": " ".join(cmd[1:-2])}
+    # the run's own CPU time (wait4), which two runs sharing the cores do not inflate as they do wall time
+    with open(os.path.join(out, "log.txt"), "w") as log:
+        p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, env=ENV)
+        timer = threading.Timer(timeout, p.kill)
+        timer.start()
+        _, status, ru = os.wait4(p.pid, 0)
+        timer.cancel()
+    r = {"wall": time.time() - t0, "cpu": ru.ru_utime + ru.ru_stime, "returncode": os.waitstatus_to_exitcode(status),
+         "command": " ".join(cmd[1:-2])}
     try:
         s = json.load(open(os.path.join(out, "summary.json")))
         rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
     except OSError:
-        r["status"] = "failed: " + (p.stderr.strip().splitlines() or ["?"])[-1][:100]
+        r["status"] = "stopped after %d s" % timeout if r["wall"] >= timeout else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
         return r
     load = [float(x["load_N"]) for x in rows]
     disp = [float(x["disp_m"]) for x in rows]
@@ -91,16 +96,17 @@ def report(res):
              "of the peak; unnotched beams with 5 % bond-strength scatter (`-pd_strength_scatter 0.05`). One rank each, two runs at",
              "a time on the 2-core machine. sigma_N = 3 P S / (2 b D^2) with span S = 2.5 D and b = 50 mm.", "",
              "| D (mm) | beam | dx (mm) | nodes | bonds | peak (N) | sigma_N (MPa) | end (of peak) | load point back (mm) | steps | Newton | KSP | "
-             "wall (s) | memory (MB) | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "wall (s) | CPU (s) | memory (MB) | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k in keys:
         D, kind, dx = int(k.split("/")[0][2:]), k.split("/")[1], float(k.split("/")[2][3:])
         r = res[k]
         if "peak" not in r:
-            lines.append("| %d | %s | %g | | | | | | | | | | %.0f | | %s |" % (D, KINDS[kind], 1e3 * dx, r.get("wall", 0), r["status"]))
+            lines.append("| %d | %s | %g | | | | | | | | | | %.0f | | | %s |" % (D, KINDS[kind], 1e3 * dx, r.get("wall", 0), r["status"]))
             continue
-        lines.append("| %d | %s | %g | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s |" % (
+        lines.append("| %d | %s | %g | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s | %s |" % (
             D, KINDS[kind], 1e3 * dx, r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
-            1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["memory_MB"] if r.get("memory_MB") else "",
+            1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["cpu"] if "cpu" in r else "",
+            "%.0f" % r["memory_MB"] if r.get("memory_MB") else "",
             r["status"][:60]))
     with open(os.path.join(OUT, "size_effect_table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -139,17 +145,24 @@ def main():
     res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
     for k in filter(None, a.redo.split(",")):
         res.pop(k, None)
+    if a.redo:
+        with open(RESULTS, "w") as fp:
+            json.dump(res, fp)
     if not a.report:
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
-                if key(D, kind, float(dx)) not in res]
+                if key(D, kind, float(dx)) not in res]  # in the order given
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
             futs = {pool.submit(run_one, D, kind, dx, a.timeout): (D, kind, dx) for D, kind, dx in todo}
             for f in concurrent.futures.as_completed(futs):
                 D, kind, dx = futs[f]
-                res[key(D, kind, dx)] = f.result()
-                print(key(D, kind, dx), res[key(D, kind, dx)].get("status"), "%.0f s" % res[key(D, kind, dx)].get("wall", 0), flush=True)
-                with open(RESULTS, "w") as fp:
+                k = key(D, kind, dx)
+                # merged into what is on disk, so that several studies can run side by side
+                res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
+                res[k] = f.result()
+                print(k, res[k].get("status"), "%.0f s" % res[k].get("wall", 0), flush=True)
+                with open(RESULTS + ".tmp", "w") as fp:
                     json.dump(res, fp)
+                os.replace(RESULTS + ".tmp", RESULTS)
                 report(res)
     report(res)
 
