@@ -4,6 +4,8 @@ Usage: test_arclength.py constraints|separation|snapback|reversal|contrast|steps
 import math
 import sys
 
+import numpy as np
+
 from pdtest import check, rel, run
 
 HN2D = "gregoire_d200_hn_2d"
@@ -61,6 +63,8 @@ def separation():
     q = c[-1]["dissipated_J"] / (s["law"]["lattice_fracture_ratio"] * GF * LIGAMENT)
     check(abs(q - 1) < 0.15, "dissipated %.4f J = %.3f of the lattice's fracture energy times the ligament area (within 15 %%)"
           % (c[-1]["dissipated_J"], q))
+    _, u, d = r.fields()
+    check(np.isfinite(u).all() and np.isfinite(d).all(), "fields at the last step finite (%d nodes)" % len(u))
     # detached or nearly detached pieces must not stall the Krylov solver (GAMG with rigid-body modes)
     its = s["ksp_its"] / max(1, s["newton_its"])
     check(its < 100, "linear solves stay cheap to the end: %.0f KSP iterations per Newton iteration (< 100)" % its)
