@@ -64,20 +64,24 @@ def run_one(D, kind, dx, timeout):
         timer.cancel()
     r = {"wall": time.time() - t0, "cpu": ru.ru_utime + ru.ru_stime, "returncode": os.waitstatus_to_exitcode(status),
          "command": " ".join(cmd[1:-2])}
-    try:
-        s = json.load(open(os.path.join(out, "summary.json")))
-        rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
-    except OSError:
+    if not os.path.exists(os.path.join(out, "summary.json")):
         r["status"] = "stopped after %d s" % timeout if r["wall"] >= timeout else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
         return r
+    r.update(parse_run(out))
+    return r
+
+
+def parse_run(out):
+    """What the tables and plots need from a finished run's output directory."""
+    s = json.load(open(os.path.join(out, "summary.json")))
+    rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
     load = [float(x["load_N"]) for x in rows]
     disp = [float(x["disp_m"]) for x in rows]
     k = max(range(len(load)), key=lambda i: load[i])
-    r.update(status=s["status"], converged=s["converged"], steps=s["steps"], newton=s["newton_its"], ksp=s["ksp_its"], peak=s["peak_load_N"],
-             nodes=s["nodes"], bonds=s["bonds"], memory_MB=s["memory"]["peak_rss_bytes"] / 2**20, final_fraction=load[-1] / load[k],
-             snapback_m=disp[k] - min(disp[k:]), dissipated=float(rows[-1]["dissipated_J"]),
-             cmod=[float(x["cmod_m"]) for x in rows], load=load)
-    return r
+    return dict(status=s["status"], converged=s["converged"], steps=s["steps"], newton=s["newton_its"], ksp=s["ksp_its"], peak=s["peak_load_N"],
+                nodes=s["nodes"], bonds=s["bonds"], memory_MB=s["memory"]["peak_rss_bytes"] / 2**20, final_fraction=load[-1] / load[k],
+                snapback_m=disp[k] - min(disp[k:]), dissipated=float(rows[-1]["dissipated_J"]), wall_s=s["wall_s"],
+                cmod=[float(x["cmod_m"]) for x in rows], load=load)
 
 
 def nominal_strength(D, P):
