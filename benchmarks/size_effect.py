@@ -33,6 +33,20 @@ THESIS_UN_ERROR = {100: "+10 %", 200: "+20 %", 400: "+40 %"}
 EXPERIMENT_D50 = {"un": 4650, "hn": 979}
 
 
+def scene_args_2d(D, kind, dx):
+    """2D plane-stress versions of the same beams (scripts/gregoire_scenes.py), written to a scratch folder;
+    at D = 50 mm the 2.5 mm wide supports and load are widened to catch a node line at dx = 5 mm."""
+    import sys
+    sys.path.insert(0, os.path.join(ROOT, "scripts"))
+    import gregoire_scenes
+    folder = tempfile.mkdtemp(prefix="pdsize_scenes_")
+    name = gregoire_scenes.scene(D / 1e3, kind, 2, dx, folder)
+    args = ["-options_file", os.path.join(folder, name + ".opts"), "-pd_control", "arclength", "-pd_stop_fraction", "0.1"]
+    if D == 50:
+        args += ["-pd_region0_box", "0.0215,0,0.0285,0", "-pd_region1_box", "0.1465,0,0.1535,0", "-pd_region2_box", "0.084,0.05,0.091,0.05"]
+    return args
+
+
 def scene_args(D, kind, dx):
     """The shipped scene with path following to 10 % of the peak; the D = 50 mm scenes stop at CMOD 0.2 mm
     under displacement control, so they are switched over, and the unnotched one gets the strength scatter
@@ -47,13 +61,13 @@ def scene_args(D, kind, dx):
     return args
 
 
-def key(D, kind, dx):
-    return "D=%d/%s/dx=%g" % (D, kind, dx)
+def key(D, kind, dx, dim=3):
+    return "D=%d/%s/dx=%g%s" % (D, kind, dx, "/2d" if dim == 2 else "")
 
 
-def run_one(D, kind, dx, timeout):
+def run_one(D, kind, dx, timeout, dim=3):
     out = tempfile.mkdtemp(prefix="pdsize_")
-    cmd = [EXE] + scene_args(D, kind, dx) + ["-pd_output_dir", out]
+    cmd = [EXE] + (scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)) + ["-pd_output_dir", out]
     t0 = time.time()
     # the run's own CPU time (wait4), which two runs sharing the cores do not inflate as they do wall time
     with open(os.path.join(out, "log.txt"), "w") as log:
@@ -93,25 +107,48 @@ def report(res):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    keys = sorted(res, key=lambda k: (float(k.split("/")[2][3:]), int(k.split("/")[0][2:]), list(KINDS).index(k.split("/")[1])))
+    keys = sorted(res, key=lambda k: (k.endswith("/2d"), float(k.split("/")[2][3:]), int(k.split("/")[0][2:]), list(KINDS).index(k.split("/")[1])))
     lines = ["# Size effect: Gregoire beams D = 50 to 400 mm under path following", "",
-             "Written by `benchmarks/size_effect.py` from `size_effect.json`. 3D, non-linear law (f_t = 3.9 MPa, G_F = 143.2 N/m),",
-             "surface and critical-stretch corrections, CMOD-controlled arc length (`-pd_control arclength`) from the start to 10 %",
-             "of the peak; unnotched beams with 5 % bond-strength scatter (`-pd_strength_scatter 0.05`). One rank each, two runs at",
-             "a time on the 2-core machine. sigma_N = 3 P S / (2 b D^2) with span S = 2.5 D and b = 50 mm.", "",
-             "| D (mm) | beam | dx (mm) | nodes | bonds | peak (N) | sigma_N (MPa) | end (of peak) | load point back (mm) | steps | Newton | KSP | "
+             "Written by `benchmarks/size_effect.py` from `size_effect.json`. 3D and 2D plane stress (thickness 50 mm), non-linear",
+             "law (f_t = 3.9 MPa, G_F = 143.2 N/m), surface and critical-stretch corrections, CMOD-controlled arc length",
+             "(`-pd_control arclength`) from the start to 10 % of the peak; unnotched beams with 5 % bond-strength scatter",
+             "(`-pd_strength_scatter 0.05`). One rank each; CPU is the run's own (wall time grows when runs share the 2 cores).",
+             "sigma_N = 3 P S / (2 b D^2) with span S = 2.5 D and b = 50 mm. 'load point back': how far the load point moves",
+             "back after the peak (snap-back).", "",
+             "| D (mm) | beam | model, dx (mm) | nodes | bonds | peak (N) | sigma_N (MPa) | end (of peak) | load point back (mm) | steps | Newton | KSP | "
              "wall (s) | CPU (s) | memory (MB) | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k in keys:
         D, kind, dx = int(k.split("/")[0][2:]), k.split("/")[1], float(k.split("/")[2][3:])
+        dim = "2D" if k.endswith("/2d") else "3D"
         r = res[k]
         if "peak" not in r:
-            lines.append("| %d | %s | %g | | | | | | | | | | %.0f | | | %s |" % (D, KINDS[kind], 1e3 * dx, r.get("wall", 0), r["status"]))
+            lines.append("| %d | %s | %s %g | | | | | | | | | | %.0f | | | %s |" % (D, KINDS[kind], dim, 1e3 * dx, r.get("wall", 0), r["status"]))
             continue
-        lines.append("| %d | %s | %g | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s | %s |" % (
-            D, KINDS[kind], 1e3 * dx, r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
+        lines.append("| %d | %s | %s %g | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s | %s |" % (
+            D, KINDS[kind], dim, 1e3 * dx, r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
             1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["cpu"] if "cpu" in r else "",
             "%.0f" % r["memory_MB"] if r.get("memory_MB") else "",
             r["status"][:60]))
+    # Bazant's size effect law for notched beams, sigma_N = B f_t / sqrt(1 + D / D0): 1 / sigma_N^2 is linear
+    # in D, so a least-squares line gives D0 = intercept / slope and B f_t = intercept^-1/2
+    lines += ["", "Size effect law fitted to each series with three or more sizes (sigma_N in MPa, D0 in mm):", "",
+              "| series | sizes | B f_t (MPa) | D0 (mm) | sigma_N ratio per doubling of D |", "|---|---|---|---|---|"]
+    series = {}
+    for k in keys:
+        if "peak" in res[k]:
+            p = k.split("/")
+            series.setdefault((p[1], p[2], p[3] if len(p) > 3 else "3d"), []).append((int(p[0][2:]), nominal_strength(int(p[0][2:]), res[k]["peak"])))
+    for (kind, dxs, dim), pts in sorted(series.items()):
+        pts.sort()
+        if len(pts) < 3:
+            continue
+        xs, ys = [p[0] for p in pts], [1 / p[1] ** 2 for p in pts]
+        n, mx, my = len(xs), sum(xs) / len(xs), sum(ys) / len(ys)
+        b = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
+        a = my - b * mx
+        fit = "%.2f | %.0f" % (a ** -0.5, a / b) if a > 0 and b > 0 else "- | -"
+        ratios = ", ".join("%.2f" % (q[1] / p[1]) for p, q in zip(pts, pts[1:]) if q[0] == 2 * p[0])
+        lines.append("| %s, %s, %s | %s | %s | %s |" % (KINDS[kind], dxs, dim, ", ".join(str(p[0]) for p in pts), fit, ratios))
     with open(os.path.join(OUT, "size_effect_table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     fig, ax = plt.subplots(1, 4, figsize=(20, 4.5))
@@ -143,6 +180,7 @@ def main():
     ap.add_argument("--sizes", default="50,100,200,400")
     ap.add_argument("--kinds", default="un,fn,hn")
     ap.add_argument("--timeout", type=float, default=7200)
+    ap.add_argument("--dim", type=int, default=3, help="3, or 2 for plane-stress versions of the beams")
     ap.add_argument("--redo", default="", help="comma-separated result keys to run again")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
@@ -154,12 +192,12 @@ def main():
             json.dump(res, fp)
     if not a.report:
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
-                if key(D, kind, float(dx)) not in res]  # in the order given
+                if key(D, kind, float(dx), a.dim) not in res]  # in the order given
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-            futs = {pool.submit(run_one, D, kind, dx, a.timeout): (D, kind, dx) for D, kind, dx in todo}
+            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim): (D, kind, dx) for D, kind, dx in todo}
             for f in concurrent.futures.as_completed(futs):
                 D, kind, dx = futs[f]
-                k = key(D, kind, dx)
+                k = key(D, kind, dx, a.dim)
                 # merged into what is on disk, so that several studies can run side by side
                 res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
                 res[k] = f.result()

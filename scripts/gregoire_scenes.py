@@ -13,7 +13,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 NOTCH = {"un": (0.0, "unnotched"), "fn": (0.2, "notch 0.2 D"), "hn": (0.5, "notch 0.5 D")}
 
 
-def scene(D, kind, dim, dx):
+def scene(D, kind, dim, dx, outdir=os.path.join(ROOT, "options")):
     a, what = NOTCH[kind]
     L, t, x0, x1, xm, w = 3.5 * D, 0.05, 0.5 * D, 3.0 * D, 1.75 * D, 0.025 * D
     name = "gregoire_d%d_%s%s" % (round(1e3 * D), kind, "_2d" if dim == 2 else "")
@@ -52,7 +52,7 @@ def scene(D, kind, dim, dx):
               "-pd_region2_displacement " + (",".join(g(v) for v in (0, 0, -0.01 * D)) if dim == 3 else ",".join(g(v) for v in (0, -0.01 * D))),
               "-pd_load_region 2", "-pd_steps 400",
               "-pd_cmod_points " + pt(xm - 0.2 * D, 0) + "," + pt(xm + 0.2 * D, 0)]
-    with open(os.path.join(ROOT, "options", name + ".opts"), "w") as f:
+    with open(os.path.join(outdir, name + ".opts"), "w") as f:
         f.write("\n".join(lines) + "\n")
     return name
 
