@@ -17,6 +17,12 @@
    turns the path for unloading and reloading (LoadReversal). */
 #include "path.h"
 
+/* Load reversal (-pd_unload_at): where a path is, given the accepted step's row. */
+typedef struct {
+  PetscInt  phase;      /* 0 not yet, 1 unloading, 2 reloading, 3 back on the envelope */
+  PetscReal gauge_turn; /* CMOD (else load-point displacement) where the path turned */
+} Reversal;
+
 typedef struct {
   PDModel       *m;
   Mat            J;
@@ -29,7 +35,7 @@ typedef struct {
   PetscInt       assemblies; /* for the preconditioner lag */
   PetscBool      direct;     /* KSPPREONLY: no lag */
   unsigned char *branch;     /* per-bond branches, frozen once Newton cycles at history kinks */
-  PetscReal      sign;       /* +1 along the path, -1 while unloading (cmod: the gauge closes) */
+  Reversal       rev;        /* load reversal; while unloading (phase 1) the cmod gauge closes */
   PetscBool      turn;       /* the next predictor goes against the last step (load reversal) */
   const char    *why;        /* why the last step failed */
 } Arc;
@@ -95,7 +101,7 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
     PetscCall(VecDot(m->cmod_pattern, a->v, &cv));
     PetscCall(VecDot(m->cmod_pattern, a->w, &cu));
     *ok   = PetscAbsScalar(cv) > 0 ? PETSC_TRUE : PETSC_FALSE;
-    *dlam = *ok ? (a->sign * dl - PetscRealPart(cu)) / PetscRealPart(cv) : 0;
+    *dlam = *ok ? ((a->rev.phase == 1 ? -1 : 1) * dl - PetscRealPart(cu)) / PetscRealPart(cv) : 0;
     break;
   case PD_ARC_CYLINDRICAL:
   case PD_ARC_SPHERICAL: {
@@ -280,20 +286,15 @@ static PetscErrorCode StepLength(Arc *a, PDPath *p, Vec u_prev, PetscReal lam_pr
   PetscFunctionReturn(0);
 }
 
-/* Load reversal (-pd_unload_at): where a path is, given the accepted step's row. */
-typedef struct {
-  PetscInt  phase;      /* 0 not yet, 1 unloading, 2 reloading, 3 back on the envelope */
-  PetscReal gauge_turn; /* CMOD (else load-point displacement) where the path turned */
-} Reversal;
-
 /* Unload once the load has fallen to unload_at of the peak (before the peak the load is the peak), load
    again at reload_at, back on the envelope once the gauge (or the load point) passes where the path
    turned. The turning steps go against the last step's direction; while unloading, which is elastic and
    nearly linear, the arc length is aimed at reload_at from the last step's load rate instead of past it
    (into reversed bending). */
-static PetscErrorCode LoadReversal(Arc *a, Reversal *rev, const PDRecord *rec, const PDCurveRow *row, PetscReal peak, PetscReal peak_sign,
-                                   PetscReal len, PetscReal dl0, PetscReal *dl) {
+static PetscErrorCode LoadReversal(Arc *a, const PDRecord *rec, const PDCurveRow *row, PetscReal peak, PetscReal peak_sign, PetscReal len,
+                                   PetscReal dl0, PetscReal *dl) {
   const PDScene  *sc    = a->m->scene;
+  Reversal       *rev   = &a->rev;
   const PetscReal f     = peak_sign * row->load / peak; /* negative once unloading overshoots */
   const PetscReal gauge = sc->has_cmod ? row->cmod : row->disp;
 
@@ -303,7 +304,6 @@ static PetscErrorCode LoadReversal(Arc *a, Reversal *rev, const PDRecord *rec, c
     if (rate > 0) *dl = PetscMin(*dl, PetscMax(1e-3 * dl0, 1.05 * (f - sc->reload_at) * peak / rate));
   }
   if ((rev->phase == 0 && f < sc->unload_at) || (rev->phase == 1 && f <= sc->reload_at)) {
-    a->sign = rev->phase == 0 ? -1 : 1;
     a->turn = PETSC_TRUE;
     if (rev->phase++ == 0) rev->gauge_turn = gauge;
     PetscCall(PetscInfo(NULL, "load reversal at %.6e N: %s\n", (double)row->load, rev->phase == 1 ? "unloading" : "reloading"));
@@ -323,12 +323,10 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PetscReal      dl = 0, dl0 = 0, dlam = sc->lambda_max / sc->steps, peak = 0, lam_prev = 0, d_prev = 0;
   const PetscInt maxsteps  = 20 * sc->steps;
   PetscReal      peak_sign = 1;
-  Reversal       rev       = {0, 0};
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(&a, sizeof a));
-  a.m    = m;
-  a.sign = 1;
+  a.m = m;
   PetscCall(PDModelCreateMatrix(m, &a.J));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
@@ -403,11 +401,12 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       peak      = PetscAbsReal(row.load);
       peak_sign = row.load < 0 ? -1 : 1;
     }
-    if (sc->unload_at > 0 && type != ARC_LOAD) PetscCall(LoadReversal(&a, &rev, rec, &row, peak, peak_sign, len, dl0, &dl));
+    if (sc->unload_at > 0 && type != ARC_LOAD) PetscCall(LoadReversal(&a, rec, &row, peak, peak_sign, len, dl0, &dl));
     if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
-    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak && rev.phase != 1 && rev.phase != 2) {
+    } else if (sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak && a.rev.phase != 1 &&
+               a.rev.phase != 2) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
                               (double)sc->stop_fraction, (double)peak));

@@ -111,6 +111,14 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscFunctionReturn(0);
 }
 
+/* A bond is softened when its history lies on the softening branch (s0 < kappa_n < sc): only then does
+   its force have a kink at kappa_n (below s0 envelope and secant coincide). */
+static PetscBool Softened(const PDModel *m, PetscInt e) {
+  const PDLaw     *law = &m->law[m->bonds->material[e]];
+  const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+  return law->kind != PD_LAW_ELASTIC && law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0 && m->kappa[e] < t->sc ? PETSC_TRUE : PETSC_FALSE;
+}
+
 /* Broken and softening bonds (global, each bond counted once) from the committed history. */
 PetscErrorCode PDModelCountDamage(PDModel *m) {
   const PDBonds *bd       = m->bonds;
@@ -124,7 +132,7 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
     if (law->kind == PD_LAW_ELASTIC || !PDBondCountedHere(m->lat, bd, e)) continue;
     if (m->kappa[e] >= t->sc)
       count[0]++;
-    else if (law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0)
+    else if (Softened(m, e))
       count[1]++;
   }
   PetscCall(MPIU_Allreduce(count, total, 2, MPIU_INT, MPI_SUM, m->lat->comm));
@@ -148,14 +156,6 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   }
   PetscCall(PDModelCountDamage(m));
   PetscFunctionReturn(0);
-}
-
-/* A bond is softened when its history lies on the softening branch (s0 < kappa_n < sc): only then does
-   its force have a kink at kappa_n (below s0 envelope and secant coincide). */
-static PetscBool Softened(const PDModel *m, PetscInt e) {
-  const PDLaw     *law = &m->law[m->bonds->material[e]];
-  const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
-  return law->kind != PD_LAW_ELASTIC && law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0 && m->kappa[e] < t->sc ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* Freezes every softened bond on the branch its stretch at u lies on; the others stay free. */
