@@ -16,6 +16,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 import tempfile
 import threading
 import time
@@ -36,7 +37,6 @@ EXPERIMENT_D50 = {"un": 4650, "hn": 979}
 def scene_args_2d(D, kind, dx):
     """2D plane-stress versions of the same beams (scripts/gregoire_scenes.py), written to a scratch folder;
     at D = 50 mm the 2.5 mm wide supports and load are widened to catch a node line at dx = 5 mm."""
-    import sys
     sys.path.insert(0, os.path.join(ROOT, "scripts"))
     import gregoire_scenes
     folder = tempfile.mkdtemp(prefix="pdsize_scenes_")
