@@ -62,6 +62,7 @@ PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *
 PetscErrorCode PDModelDestroy(PDModel *);
 PetscInt       PDModelEffects(const PDModel *, const char *names[5]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
+PetscBool      PDModelDefaultsToGAMG(const PDModel *);
 PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);
 PetscErrorCode PDModelJacobian(SNES, Vec u, Mat J, Mat P, void *);

@@ -205,8 +205,15 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   const PetscInt   bs = m->bs, bs2 = bs * bs;
   PetscInt         maxrow = 0, *cols, nreg = 0;
   PetscScalar     *vals;
+  PetscBool        assembled, aij, rowcopy;
 
   PetscFunctionBeginUser;
+  /* Once an AIJ matrix holds its (exact, fixed) pattern, each scalar row is copied in place in column
+     order: MatSetValues would search every column of the row, which made AIJ assembly six times slower
+     than SBAIJ's (the storage GAMG needs). Blocked storage keeps MatSetValuesBlocked. */
+  PetscCall(MatAssembled(J, &assembled));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)J, &aij, MATSEQAIJ, MATMPIAIJ, ""));
+  rowcopy = assembled && aij;
   for (PetscInt i = 0; i < lat->nowned; i++) maxrow = PetscMax(maxrow, bd->inc_start[i + 1] - bd->inc_start[i] + 1);
   PetscCall(PetscMalloc2(maxrow, &cols, maxrow * bs2, &vals));
   for (PetscInt i = 0; i < lat->nowned; i++) {
@@ -248,7 +255,10 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
         vals[r * ld + diag * bs + qq] = (fr || fq) ? (r == qq ? m->bc_scale : 0) : D[r * bs + qq];
       }
     }
-    PetscCall(MatSetValuesBlocked(J, 1, &lat->gid[i], ncols, cols, vals, INSERT_VALUES));
+    if (rowcopy)
+      for (PetscInt r = 0; r < bs; r++) PetscCall(MatSetValuesRow(J, bs * lat->gid[i] + r, &vals[r * ld]));
+    else
+      PetscCall(MatSetValuesBlocked(J, 1, &lat->gid[i], ncols, cols, vals, INSERT_VALUES));
   }
   PetscCall(PetscFree2(cols, vals));
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));

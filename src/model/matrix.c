@@ -3,6 +3,18 @@
 #include "pd_model.h"
 #include <petscpc.h>
 
+/* Algebraic multigrid is the default preconditioner where ICC(0)'s iteration count (which doubles as dx
+   halves) outweighs GAMG's set-up: every 2D model (long 2D beams under path following) and non-linear 3D
+   models from PD_GAMG_MIN_NODES nodes, whose tangent is solved hundreds of times (docs/solvers.md: the 3D
+   D = 100 mm half-notched beam at dx = 5 mm, 14,000 nodes, and the D = 50 mm beam at 2.5 mm, 28,000
+   nodes, run about twice as fast; the D = 50 mm beam at 5 mm, 3,500 nodes, 20 % slower). Linear 3D
+   models keep ICC(0) on SBAIJ: one solve, half the memory. */
+#define PD_GAMG_MIN_NODES 10000
+
+PetscBool PDModelDefaultsToGAMG(const PDModel *m) {
+  return (m->bs == 2 || (!m->linear && m->lat->nglobal >= PD_GAMG_MIN_NODES)) ? PETSC_TRUE : PETSC_FALSE;
+}
+
 PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
   const PDLattice *lat = m->lat;
   const PDBonds   *bd  = m->bonds;
@@ -38,10 +50,10 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
      switches the default storage to AIJ. -pd_mat_type overrides either choice. */
   {
     char      pctype[64] = "";
-    PetscBool gamg = PETSC_FALSE, set;
+    PetscBool gamg       = PETSC_FALSE, set;
     PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &set));
     PetscCall(PetscStrcmp(pctype, PCGAMG, &gamg));
-    if (!set && bs == 2) gamg = PETSC_TRUE; /* the default for 2D models (PDSolverConfigureKSP) */
+    if (!set) gamg = PDModelDefaultsToGAMG(m); /* the default of PDSolverConfigureKSP */
     PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
   }
   PetscCall(MatSetOptionsPrefix(*J, "pd_"));

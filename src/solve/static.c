@@ -11,9 +11,9 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PC pc;
 
   PetscFunctionBeginUser;
-  /* CG + block Jacobi with ICC(0) blocks on SBAIJ storage: measured fastest on the PD stiffness
-     (docs/benchmarks/elastic.md); direct factorisations suffer from the fill-in of a 3D horizon and
-     GAMG's set-up costs more than it saves on these matrices. The consistent tangent of a softening
+  /* CG + block Jacobi with ICC(0) blocks on SBAIJ storage: measured fastest on small 3D PD stiffnesses
+     (docs/benchmarks/elastic.md); direct factorisations suffer from the fill-in of a 3D horizon. GAMG
+     takes over on 2D and large models (below). The consistent tangent of a softening
      bond is indefinite: CG and MINRES (which needs a positive preconditioner) break down on it with
      ICC, GMRES does not. */
   PetscCall(KSPSetType(ksp, (m->softening && m->scene->tangent == PD_TANGENT_CONSISTENT) ? KSPGMRES : KSPCG));
@@ -21,10 +21,10 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
      cut into half of them and doubled the count (22,965 against 13,008 KSP its at dx = 5 mm) */
   PetscCall(KSPGMRESSetRestart(ksp, 60));
   PetscCall(KSPGetPC(ksp, &pc));
-  /* 2D models: algebraic multigrid with the rigid-body near-null space; ICC(0) loses its grip on the
-     long 2D beams (half-notched D = 200 mm under path following: 291,232 KSP iterations and 138 s with
-     ICC, 20,942 and 30 s with GAMG) */
-  PetscCall(PCSetType(pc, m->bs == 2 ? PCGAMG : PCBJACOBI));
+  /* 2D models and large 3D ones: algebraic multigrid with the rigid-body near-null space; ICC(0) loses
+     its grip on long beams (2D half-notched D = 200 mm under path following: 291,232 KSP iterations and
+     138 s with ICC, 20,942 and 30 s with GAMG; PDModelDefaultsToGAMG) */
+  PetscCall(PCSetType(pc, PDModelDefaultsToGAMG(m) ? PCGAMG : PCBJACOBI));
   PetscCall(KSPSetTolerances(ksp, m->linear ? 1e-9 : 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
   PetscFunctionReturn(0);
 }
