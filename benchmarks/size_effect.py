@@ -15,6 +15,7 @@ import csv
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -65,6 +66,13 @@ def key(D, kind, dx, dim=3):
     return "D=%d/%s/dx=%g%s" % (D, kind, dx, "/2d" if dim == 2 else "")
 
 
+def portable(command):
+    """The command as a user's clone would run it: scene paths relative to the project, generated 2D scenes
+    named by the script that writes them."""
+    command = command.replace(ROOT + os.sep, "")
+    return re.sub(r"\S*pdsize_scenes_[^/\s]*/", "<scripts/gregoire_scenes.py output>/", command)
+
+
 def run_one(D, kind, dx, timeout, dim=3):
     out = tempfile.mkdtemp(prefix="pdsize_")
     cmd = [EXE] + (scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)) + ["-pd_output_dir", out]
@@ -77,7 +85,7 @@ def run_one(D, kind, dx, timeout, dim=3):
         _, status, ru = os.wait4(p.pid, 0)
         timer.cancel()
     r = {"wall": time.time() - t0, "cpu": ru.ru_utime + ru.ru_stime, "returncode": os.waitstatus_to_exitcode(status),
-         "command": " ".join(cmd[1:-2])}
+         "command": portable(" ".join(cmd[1:-2]))}
     if not os.path.exists(os.path.join(out, "summary.json")):
         r["status"] = "stopped after %d s" % timeout if r["wall"] >= timeout else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
         return r
