@@ -13,7 +13,6 @@ import argparse
 import concurrent.futures
 import csv
 import json
-import math
 import os
 import re
 import subprocess
@@ -151,7 +150,7 @@ def report(res):
         if len(pts) < 3:
             continue
         xs, ys = [p[0] for p in pts], [1 / p[1] ** 2 for p in pts]
-        n, mx, my = len(xs), sum(xs) / len(xs), sum(ys) / len(ys)
+        mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
         b = sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sum((x - mx) ** 2 for x in xs)
         a = my - b * mx
         fit = "%.2f | %.0f" % (a ** -0.5, a / b) if a > 0 and b > 0 else "- | -"
