@@ -22,6 +22,9 @@ import threading
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+import gregoire_scenes  # noqa: E402 (scripts/ is a folder of scripts, not a package)
+
 EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
 OUT = os.path.join(ROOT, "docs", "benchmarks")
 RESULTS = os.path.join(OUT, "size_effect.json")
@@ -37,8 +40,6 @@ EXPERIMENT_D50 = {"un": 4650, "hn": 979}
 def scene_args_2d(D, kind, dx):
     """2D plane-stress versions of the same beams (scripts/gregoire_scenes.py), written to a scratch folder;
     at D = 50 mm the 2.5 mm wide supports and load are widened to catch a node line at dx = 5 mm."""
-    sys.path.insert(0, os.path.join(ROOT, "scripts"))
-    import gregoire_scenes
     folder = tempfile.mkdtemp(prefix="pdsize_scenes_")
     name = gregoire_scenes.scene(D / 1e3, kind, 2, dx, folder)
     args = ["-options_file", os.path.join(folder, name + ".opts"), "-pd_control", "arclength", "-pd_stop_fraction", "0.1"]
@@ -63,6 +64,12 @@ def scene_args(D, kind, dx):
 
 def key(D, kind, dx, dim=3):
     return "D=%d/%s/dx=%g%s" % (D, kind, dx, "/2d" if dim == 2 else "")
+
+
+def parse_key(k):
+    """The inverse of key(): (D in mm, kind, dx in m, dim)."""
+    p = k.split("/")
+    return int(p[0][2:]), p[1], float(p[2][3:]), 2 if len(p) > 3 else 3
 
 
 def portable(command):
@@ -114,7 +121,7 @@ def report(res):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    keys = sorted(res, key=lambda k: (k.endswith("/2d"), float(k.split("/")[2][3:]), int(k.split("/")[0][2:]), list(KINDS).index(k.split("/")[1])))
+    keys = sorted(res, key=lambda k: (-parse_key(k)[3], parse_key(k)[2], parse_key(k)[0], list(KINDS).index(parse_key(k)[1])))
     lines = ["# Size effect: Gregoire beams D = 50 to 400 mm under path following", "",
              "Written by `benchmarks/size_effect.py` from `size_effect.json`. 3D and 2D plane stress (thickness 50 mm), non-linear",
              "law (f_t = 3.9 MPa, G_F = 143.2 N/m), surface and critical-stretch corrections, CMOD-controlled arc length",
@@ -125,8 +132,8 @@ def report(res):
              "| D (mm) | beam | model, dx (mm) | nodes | bonds | peak (N) | sigma_N (MPa) | end (of peak) | load point back (mm) | steps | Newton | KSP | "
              "wall (s) | CPU (s) | memory (MB) | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k in keys:
-        D, kind, dx = int(k.split("/")[0][2:]), k.split("/")[1], float(k.split("/")[2][3:])
-        dim = "2D" if k.endswith("/2d") else "3D"
+        D, kind, dx, d = parse_key(k)
+        dim = "%dD" % d
         r = res[k]
         if "peak" not in r:
             lines.append("| %d | %s | %s %g | | | | | | | | | | %.0f | | | %s |" % (D, KINDS[kind], dim, 1e3 * dx, r.get("wall", 0), r["status"]))
@@ -143,8 +150,8 @@ def report(res):
     series = {}
     for k in keys:
         if "peak" in res[k]:
-            p = k.split("/")
-            series.setdefault((p[1], p[2], p[3] if len(p) > 3 else "3d"), []).append((int(p[0][2:]), nominal_strength(int(p[0][2:]), res[k]["peak"])))
+            D, kind, dx, d = parse_key(k)
+            series.setdefault((kind, "dx=%g" % dx, "%dd" % d), []).append((D, nominal_strength(D, res[k]["peak"])))
     for (kind, dxs, dim), pts in sorted(series.items()):
         pts.sort()
         if len(pts) < 3:
@@ -162,15 +169,14 @@ def report(res):
     for i, kind in enumerate(KINDS):
         for k in keys:
             r = res[k]
-            if k.split("/")[1] != kind or "load" not in r:
+            if parse_key(k)[1] != kind or "load" not in r:
                 continue
-            ax[i].plot([1e3 * c for c in r["cmod"]], [l / 1e3 for l in r["load"]], label="D = %s, dx = %s mm" % (k.split("/")[0][2:],
-                                                                                                              1e3 * float(k.split("/")[2][3:])))
+            ax[i].plot([1e3 * c for c in r["cmod"]], [l / 1e3 for l in r["load"]], label="D = %d, dx = %g mm" % (parse_key(k)[0], 1e3 * parse_key(k)[2]))
         ax[i].set(title=KINDS[kind], xlabel="CMOD (mm)", ylabel="load (kN)")
         ax[i].legend(fontsize=7)
     for kind, mk in zip(KINDS, "o^s"):
-        pts = sorted((int(k.split("/")[0][2:]), nominal_strength(int(k.split("/")[0][2:]), res[k]["peak"]), k.split("/")[2])
-                     for k in keys if k.split("/")[1] == kind and "peak" in res[k])
+        pts = sorted((parse_key(k)[0], nominal_strength(parse_key(k)[0], res[k]["peak"]), "dx=%g" % parse_key(k)[2])
+                     for k in keys if parse_key(k)[1] == kind and "peak" in res[k])
         for dxs in sorted(set(p[2] for p in pts)):
             q = [p for p in pts if p[2] == dxs]
             ax[3].loglog([p[0] for p in q], [p[1] for p in q], mk + ("-" if dxs == "dx=0.005" else "--"), label="%s, %s" % (KINDS[kind], dxs))
