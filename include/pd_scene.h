@@ -81,7 +81,8 @@ typedef struct {
   PetscReal    dx, horizon_ratio;
   PDInfluence  influence;
   PetscBool    partial_volume, surface_correction;
-  PetscBool    notch_surface; /* notch faces count as free surfaces in the surface correction */
+  PetscBool    notch_surface;  /* notch faces count as free surfaces in the surface correction */
+  PetscBool    sc_whole_cells; /* surface correction: family volume counts neighbour cells whole (PeriPy) */
   PDKinematics kinematics;
   PDStretch    stretch;
   PetscBool    sc_correction;    /* per-bond critical stretch from lambda_ij c */

@@ -34,6 +34,9 @@ def scene(D, kind, dim, dx, outdir=os.path.join(ROOT, "options")):
     else:
         lines += ["-pd_domain " + ",".join(g(v) for v in (0, 0, 0, L, t, D))]
     lines += ["-pd_dx %g" % dx, "-pd_E 37e9", "-pd_rho 2346", "-pd_law nonlinear", "-pd_ft 3.9e6", "-pd_Gf 143.2"]
+    if dim == 3:
+        # the surface-correction convention of the thesis's code, as in the D = 50 mm scenes (docs/softening.md)
+        lines += ["-pd_sc_whole_cells"]
     if a > 0:
         lines += ["-pd_notch0_box " + box(xm, xm, 0, a * D)]
     else:

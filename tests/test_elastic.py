@@ -18,6 +18,19 @@ def bond_counts():
         s = run(name, "-pd_dx", dx, "-pd_dry_run").summary
         check(s["nodes"] == nodes, "%s dx=%g: %d nodes (Table A.1: %d)" % (name, dx, s["nodes"], nodes))
         check(rel(s["bonds"], bonds) <= tol, "%s dx=%g: %d bonds (Table A.1: %d, tolerance %g %%)" % (name, dx, s["bonds"], bonds, 100 * tol))
+    # Surface correction in the bulk: lambda = V0 / V_i with the analytic V0 = 4 pi delta^3 / 3 (delta = pi dx)
+    # and V_i over the family's 122 neighbours: partial volumes (PA-PDLAMMPS, Eq. 4.2) by default, whole
+    # cells with -pd_sc_whole_cells (the thesis's code). The smallest lambda is a bulk node pair's.
+    m = math.pi
+    V0 = 4 / 3 * math.pi * m ** 3
+    r = [math.sqrt(i * i + j * j + k * k) for i in range(-4, 5) for j in range(-4, 5) for k in range(-4, 5)]
+    r = [x for x in r if 0 < x <= m * (1 + 1e-10)]
+    partial = sum(1 if x <= m - 0.5 else m + 0.5 - x for x in r)
+    for extra, Vi in (([], partial), (["-pd_sc_whole_cells"], len(r))):
+        s = run("gregoire_d50_un", "-pd_dry_run", "-pd_sc_whole_cells", "false", *extra).summary
+        lam = s["surface_correction_range"][0]
+        check(len(r) == 122 and rel(lam, V0 / Vi) < 1e-6, "%s: bulk lambda %.6f = V0 / %.4f cells = %.6f" % (
+            "whole cells" if extra else "partial volumes", lam, Vi, V0 / Vi))
 
 
 # the Gregoire scenes soften by default; these tests want their elastic response to a 50 um deflection

@@ -28,13 +28,12 @@ def unnotched():
 def half_notched():
     r = run("gregoire_d50_hn")
     p = traced(r, "half-notched")
-    # The target is +35 % of the experimental mean (979 N); pdimplicit reaches +42 %, the thesis's
-    # explicit run +31 % (docs/softening.md). Until the cause is found this guards the measured value
-    # (1,388 N with the default increments) against unintended change: 2 % is the step-size and limiter
-    # spread measured on this beam. One and two ranks at this spacing: docs/softening.md (the CTest
-    # comparison runs at dx = 10 mm, test_softening.py, to keep the suite short).
-    check(rel(p, 1388) < 0.02, "half-notched: peak %.1f N within 2 %% of the recorded 1,388 N (+%.0f %% on the experimental mean 979 N)" % (
-        p, 100 * (p / 979 - 1)))
+    # Within 35 % of the experimental mean (979 N), the target set against the thesis's explicit +31 %.
+    # The scene uses the thesis's surface-correction convention (whole cells in the family volume), with
+    # which pdimplicit reproduces the thesis's three D = 50 mm peaks to 3 % (docs/softening.md).
+    check(p <= 1.35 * 979, "half-notched: peak %.1f N within 35 %% of the experimental mean 979 N (+%.1f %%)" % (p, 100 * (p / 979 - 1)))
+    # and the thesis's 1,280 N to 3 %: the spread of the three beams about the thesis's values
+    check(rel(p, 1280) < 0.03, "half-notched: peak %.1f N within 3 %% of the thesis's 1,280 N (%+.1f %%)" % (p, 100 * (p / 1280 - 1)))
 
 
 if __name__ == "__main__":

@@ -50,11 +50,12 @@ static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
   }
   {
     /* discretisation corrections in force; the critical-stretch one only where a law has a critical stretch */
-    const char *name[4];
+    const char *name[5];
     PetscInt    n = 0;
     if (sc->partial_volume) name[n++] = "partial_volume";
     if (sc->surface_correction) name[n++] = "surface_correction";
     if (sc->surface_correction && sc->notch_surface && sc->nnotches) name[n++] = "notch_faces_corrected";
+    if (sc->surface_correction && sc->sc_whole_cells) name[n++] = "family_volume_whole_cells";
     if (sc->surface_correction && sc->sc_correction && m->softening) name[n++] = "critical_stretch";
     PetscCall(PetscFPrintf(comm, fp, "  \"corrections\": ["));
     for (PetscInt k = 0; k < n; k++) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", k ? ", " : "", name[k]));

@@ -399,6 +399,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
       PetscOptionsObject, "-pd_sc_notch_surface",
       "Treat notch faces as free surfaces in the surface correction (default: a notch is a cut, its bonds count in the family volume)",
       &sc->notch_surface, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_whole_cells",
+                         "Surface correction family volume V_i = sum V_j with neighbour cells counted whole, as PeriPy computes it "
+                         "(Hobbs thesis); default sum beta_ij V_j with the partial volumes of the horizon edge",
+                         &sc->sc_whole_cells, NULL));
   PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_kinematics", "Bond stretch: small (linearised) or finite (exact)", PDKinematicsNames, 2,
                          &kin, NULL));
   sc->kinematics = (PDKinematics)kin;
