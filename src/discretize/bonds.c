@@ -82,10 +82,11 @@ static PetscReal PartialVolumeFactor(const PDScene *sc, PetscReal len, PetscReal
   return (delta + 0.5 * sc->dx - len) / sc->dx;
 }
 
-/* A neighbour's share of the family volume V_i in the surface correction: its partial volume, or its
-   whole cell as PeriPy counts it (the convention of the Hobbs thesis, docs/softening.md) */
-static PetscReal FamilyVolumeShare(const PDScene *sc, PetscReal len, PetscReal delta) {
-  return sc->sc_whole_cells ? 1 : PartialVolumeFactor(sc, len, delta);
+/* A neighbour's share of the family volume V_i in the surface correction, given its partial-volume
+   factor beta: beta, or its whole cell as PeriPy counts it (the convention of the Hobbs thesis,
+   docs/softening.md) */
+static PetscReal FamilyVolumeShare(const PDScene *sc, PetscReal beta) {
+  return sc->sc_whole_cells ? 1 : beta;
 }
 
 typedef struct {
@@ -138,7 +139,7 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
             if (r2 > d2) continue;
             for (PetscInt k = 0; k < sc->nnotches && !cut; k++) cut = NotchCuts(&sc->notch[k], xi, xj, sc->dim, tol);
             if (cut) {
-              const PetscReal vcut = FamilyVolumeShare(sc, PetscSqrtReal(r2), lat->horizon) * lat->cell_volume;
+              const PetscReal vcut = FamilyVolumeShare(sc, PartialVolumeFactor(sc, PetscSqrtReal(r2), lat->horizon)) * lat->cell_volume;
               cut_volume[i] += vcut;
               if (j < lat->nowned) cut_volume[j] += vcut; /* a pair with a ghost is seen by the ghost's owner too */
               if (lat->gid[i] < lat->gid[j]) (*ncut_local)++;
@@ -203,7 +204,7 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   for (PetscInt i = 0; i < lat->nowned; i++) {
     v[i] = sc->notch_surface ? 0 : cut_volume[i];
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++)
-      v[i] += (sc->sc_whole_cells ? 1 : beta[bd->inc_bond[p]]) * lat->cell_volume;
+      v[i] += FamilyVolumeShare(sc, beta[bd->inc_bond[p]]) * lat->cell_volume;
   }
   PetscCall(VecRestoreArray(vol, &v));
   PetscCall(VecGhostUpdateBegin(vol, INSERT_VALUES, SCATTER_FORWARD));
