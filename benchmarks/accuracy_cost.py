@@ -23,12 +23,9 @@ import math
 import os
 import subprocess
 import tempfile
-import threading
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
-OUT = os.path.join(ROOT, "docs", "benchmarks")
+from common import EXE, OUT, ROOT, experiment as experiment_rows, load_results, run_timed, store_result
+
 RESULTS = os.path.join(OUT, "accuracy_cost.json")
 PI = "3.141592653589793"
 
@@ -67,8 +64,7 @@ def timoshenko(P=1e4, L=1.0, E=30e9, b=0.1, h=0.1, nu=0.25, k=5.0 / 6.0):
 
 
 def experiment(scene):
-    rows = [l for l in open(os.path.join(ROOT, "data", DATA[scene])) if not l.startswith("#")][1:]
-    return [(1e-3 * float(l.split(",")[0]), 1e3 * float(l.split(",")[1])) for l in rows]
+    return [(1e-3 * r[0], 1e3 * r[1]) for r in experiment_rows(DATA[scene])]
 
 
 def interp(x, xs, ys):
@@ -95,20 +91,13 @@ def run_one(scene, dx, m, path, timeout, extra=()):
     out = tempfile.mkdtemp(prefix="pdcost_")
     cmd = [EXE, "-options_file", os.path.join(ROOT, "options", scene + ".opts"), "-pd_dx", str(dx), "-pd_horizon_ratio", m,
            "-pd_output_dir", out] + (EXPLICIT[scene] if path == "explicit" else []) + MODEL.get(scene, []) + list(extra)
-    t0 = time.time()
     errf = tempfile.TemporaryFile(mode="w+")
-    p = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=errf)
-    timer = threading.Timer(timeout, p.kill)
-    timer.start()
-    _, status, _ = os.wait4(p.pid, 0)
-    timer.cancel()
-    p.returncode = os.waitstatus_to_exitcode(status)
-    wall = time.time() - t0
-    if wall >= timeout:
+    code, wall, _, timed_out = run_timed(cmd, timeout, subprocess.DEVNULL, errf)
+    if timed_out:
         return {"status": "stopped after %d s" % timeout, "wall": timeout}
     errf.seek(0)
     err = errf.read()
-    r = {"wall": wall, "returncode": p.returncode}
+    r = {"wall": wall, "returncode": code}
     try:
         s = json.load(open(os.path.join(out, "summary.json")))
         rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
@@ -268,23 +257,21 @@ def main():
     ap.add_argument("--report", action="store_true")
     ap.add_argument("--memory", action="store_true", help="measure every point's peak memory on a short run (allocation happens up front)")
     a = ap.parse_args()
-    res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
+    res = load_results(RESULTS)
     for scene, dx, m, paths in ([] if a.report else POINTS):
         for path in paths:
             k = key(scene, dx, m, path)
             if a.memory and k in res:
                 short = {"implicit": ["-pd_stop_cmod", "3e-6"] if scene != "cantilever" else [],
                          "explicit": ["-pd_stop_cmod", "1e-9"] if scene != "cantilever" else ["-pd_ramp_time", "1e-5", "-pd_hold_time", "0"]}[path]
-                res[k]["rss_mb"] = run_one(scene, dx, m, path, a.timeout, short).get("rss_mb")
+                res = store_result(RESULTS, k, dict(res[k], rss_mb=run_one(scene, dx, m, path, a.timeout, short).get("rss_mb")))
                 print(k, "%.0f MB" % res[k]["rss_mb"], flush=True)
                 continue
             if k in res or (a.only and path != a.only):
                 continue
             print("running", k, flush=True)
-            res[k] = run_one(scene, dx, m, path, a.timeout)
+            res = store_result(RESULTS, k, run_one(scene, dx, m, path, a.timeout))
             print("  %s peak %s wall %.0f s" % (res[k]["status"], res[k].get("peak"), res[k]["wall"]), flush=True)
-            with open(RESULTS, "w") as f:
-                json.dump(res, f, indent=1, sort_keys=True)
             report(res)
     report(res)
 

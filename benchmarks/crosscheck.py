@@ -21,9 +21,7 @@ import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+from common import ENV, EXE, ROOT
 
 
 def run(scene, out, ranks, opts):

@@ -13,16 +13,13 @@ import sys
 import tempfile
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.path.join(ROOT, "build", "pdimplicit")
+from common import ENV, EXE, OUT, ROOT
+
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
-# the scene's elastic response: one linear solve for a 50 um deflection
-# elastic solve of the beam; partial volumes in the surface correction (the elastic default, on which the
+# the scene's elastic response, one linear solve for a 50 um deflection; partial volumes in the surface correction (the elastic default, on which the
 # committed results were measured; the scene itself now follows the thesis's whole cells)
 ELASTIC = ["-pd_law", "elastic", "-pd_region2_displacement", "0,0,-5e-5", "-pd_steps", "1", "-pd_stop_cmod", "0",
            "-pd_sc_whole_cells", "false"]
-OUT = os.path.join(ROOT, "docs", "benchmarks")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 TIMEOUT = 900
 
 # name, ranks, options, largest dx fine enough to try (direct solvers stop early: fill-in)

@@ -14,15 +14,11 @@ import argparse
 import csv
 import json
 import os
-import subprocess
 import tempfile
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
-OUT = os.path.join(ROOT, "docs", "benchmarks")
+from common import EXE, OUT, ROOT, experiment, load_results, run_timed, store_result
+
 RESULTS = os.path.join(OUT, "gregoire.json")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
 LAWS = ["linear", "bilinear", "trilinear", "nonlinear"]
@@ -44,17 +40,16 @@ def run_one(beam, law, dx, extra, ranks, timeout):
            "-pd_output_dir", out] + extra
     if ranks > 1:
         cmd = ["mpiexec", "-n", str(ranks)] + cmd
-    t0 = time.time()
-    try:
-        p = subprocess.run(cmd, capture_output=True, text=True, env=ENV, timeout=timeout)
-    except subprocess.TimeoutExpired:
+    with open(os.path.join(out, "log.txt"), "w") as log:
+        code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
+    if timed_out:
         return {"status": "stopped after %d s" % timeout, "wall": timeout}
-    r = {"wall": time.time() - t0, "returncode": p.returncode}
+    r = {"wall": wall, "cpu": cpu, "returncode": code}
     try:
         s = json.load(open(os.path.join(out, "summary.json")))
         rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
     except OSError:
-        r["status"] = "failed: " + (p.stderr.strip().splitlines() or ["?"])[-1][:100]
+        r["status"] = "failed: " + (open(os.path.join(out, "log.txt")).read().strip().splitlines() or ["?"])[-1][:100]
         return r
     r.update(status=s["status"], converged=s["converged"], steps=s["steps"], newton=s["newton_its"], ksp=s["ksp_its"],
              peak=s["peak_load_N"], final_load=float(rows[-1]["load_N"]), final_cmod=float(rows[-1]["cmod_m"]),
@@ -64,21 +59,12 @@ def run_one(beam, law, dx, extra, ranks, timeout):
     return r
 
 
-def load(path):
-    return json.load(open(path)) if os.path.exists(path) else {}
-
-
-def save(res, path):
-    with open(path, "w") as f:
-        json.dump(res, f, indent=1, sort_keys=True)
-
-
 def load_all():
     """Every results file (gregoire*.json): runs on different spacings can go to different files, in parallel."""
     res = {}
     for name in sorted(os.listdir(OUT)):
         if name.startswith("gregoire") and name.endswith(".json"):
-            res.update(load(os.path.join(OUT, name)))
+            res.update(load_results(os.path.join(OUT, name)))
     return res
 
 
@@ -128,8 +114,7 @@ def plot(res):
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
     for ax, beam in zip(axes, BEAMS):
         if beam in DATA:
-            rows = [l for l in open(os.path.join(ROOT, "data", DATA[beam])) if not l.startswith("#")][1:]
-            d = [[float(x) for x in l.split(",")] for l in rows]
+            d = experiment(DATA[beam])
             ax.fill_between([x[0] for x in d], [1e3 * x[2] for x in d], [1e3 * x[3] for x in d], color="0.85", label="experiment min-max")
             ax.plot([x[0] for x in d], [1e3 * x[1] for x in d], color="0.5", lw=1, label="experiment mean")
         for k in sorted(res):
@@ -162,7 +147,7 @@ def main():
     ap.add_argument("--report", action="store_true")
     ap.add_argument("--results", default=RESULTS, help="results file (docs/benchmarks/gregoire*.json are merged in the report)")
     a = ap.parse_args()
-    res = load(a.results)
+    res = load_results(a.results)
     jobs = []
     if not a.only_studies:
         for dx in [float(x) for x in a.dx.split(",")]:
@@ -179,9 +164,8 @@ def main():
         if k in res:
             continue
         print("running", k, flush=True)
-        res[k] = run_one(beam, law, dx, extra, a.ranks, a.timeout)
+        res = store_result(a.results, k, run_one(beam, law, dx, extra, a.ranks, a.timeout))
         print("  ", res[k]["status"], "peak", res[k].get("peak"), "wall %.0f s" % res[k].get("wall", 0), flush=True)
-        save(res, a.results)
         report(load_all())
     report(load_all())
 

@@ -15,20 +15,15 @@ import csv
 import json
 import os
 import re
-import subprocess
 import sys
 import tempfile
-import threading
-import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from common import EXE, OUT, ROOT, load_results, run_timed, store_result
+
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import gregoire_scenes  # noqa: E402 (scripts/ is a folder of scripts, not a package)
 
-EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
-OUT = os.path.join(ROOT, "docs", "benchmarks")
 RESULTS = os.path.join(OUT, "size_effect.json")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 KINDS = {"un": "unnotched", "fn": "notch 0.2 D", "hn": "notch 0.5 D"}
 THICKNESS = 0.05
 # Hobbs thesis Sec. 6.4 (explicit dynamics, dx = 5 mm): unnotched peak over experiment
@@ -82,18 +77,11 @@ def portable(command):
 def run_one(D, kind, dx, timeout, dim=3):
     out = tempfile.mkdtemp(prefix="pdsize_")
     cmd = [EXE] + (scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)) + ["-pd_output_dir", out]
-    t0 = time.time()
-    # the run's own CPU time (wait4), which two runs sharing the cores do not inflate as they do wall time
     with open(os.path.join(out, "log.txt"), "w") as log:
-        p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT, env=ENV)
-        timer = threading.Timer(timeout, p.kill)
-        timer.start()
-        _, status, ru = os.wait4(p.pid, 0)
-        timer.cancel()
-    r = {"wall": time.time() - t0, "cpu": ru.ru_utime + ru.ru_stime, "returncode": os.waitstatus_to_exitcode(status),
-         "command": portable(" ".join(cmd[1:-2]))}
+        code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
+    r = {"wall": wall, "cpu": cpu, "returncode": code, "command": portable(" ".join(cmd[1:-2]))}
     if not os.path.exists(os.path.join(out, "summary.json")):
-        r["status"] = "stopped after %d s" % timeout if r["wall"] >= timeout else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
+        r["status"] = "stopped after %d s" % timeout if timed_out else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
         return r
     r.update(parse_run(out))
     return r
@@ -197,27 +185,19 @@ def main():
     ap.add_argument("--redo", default="", help="comma-separated result keys to run again")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
-    res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
-    for k in filter(None, a.redo.split(",")):
-        res.pop(k, None)
-    if a.redo:
-        with open(RESULTS, "w") as fp:
-            json.dump(res, fp)
+    res = load_results(RESULTS)
+    # an old result stays in the file until its rerun finishes
+    done = set(res) - set(a.redo.split(","))
     if not a.report:
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
-                if key(D, kind, float(dx), a.dim) not in res]  # in the order given
+                if key(D, kind, float(dx), a.dim) not in done]  # in the order given
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
             futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim): (D, kind, dx) for D, kind, dx in todo}
             for f in concurrent.futures.as_completed(futs):
                 D, kind, dx = futs[f]
                 k = key(D, kind, dx, a.dim)
-                # merged into what is on disk, so that several studies can run side by side
-                res = json.load(open(RESULTS)) if os.path.exists(RESULTS) else {}
-                res[k] = f.result()
+                res = store_result(RESULTS, k, f.result())
                 print(k, res[k].get("status"), "%.0f s" % res[k].get("wall", 0), flush=True)
-                with open(RESULTS + ".tmp", "w") as fp:
-                    json.dump(res, fp)
-                os.replace(RESULTS + ".tmp", RESULTS)
                 report(res)
     report(res)
 

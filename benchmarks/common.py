@@ -1,0 +1,49 @@
+"""What the benchmark scripts share: where things are, how pdimplicit is started and timed, how results
+are kept between runs, and the digitised experimental curves."""
+import json
+import os
+import subprocess
+import threading
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+# PDIMPLICIT lets a long study run a copy of the binary while the build tree is rebuilt
+EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
+OUT = os.path.join(ROOT, "docs", "benchmarks")
+# Open MPI refuses to start as root without these (CI runs as root)
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT):
+    """Runs cmd (output to the open files given), killed after timeout seconds.
+    Returns (exit code, wall s, CPU s, timed out). The CPU time is the child's own (wait4), which a second
+    run sharing the two cores does not inflate as it does the wall time."""
+    t0 = time.time()
+    p = subprocess.Popen(cmd, stdout=stdout, stderr=stderr, env=ENV)
+    timer = threading.Timer(timeout, p.kill)
+    timer.start()
+    _, status, ru = os.wait4(p.pid, 0)
+    timer.cancel()
+    wall = time.time() - t0
+    return os.waitstatus_to_exitcode(status), wall, ru.ru_utime + ru.ru_stime, wall >= timeout
+
+
+def load_results(path):
+    return json.load(open(path)) if os.path.exists(path) else {}
+
+
+def store_result(path, key, value):
+    """Adds one run to a results file, merged into what is on disk, so that several studies can write the
+    same file side by side; the file is replaced whole, never left half written. Returns the merged results."""
+    res = load_results(path)
+    res[key] = value
+    with open(path + ".tmp", "w") as f:
+        json.dump(res, f, indent=1, sort_keys=True)
+    os.replace(path + ".tmp", path)
+    return res
+
+
+def experiment(name):
+    """A digitised experimental curve in data/: rows of [CMOD (mm), mean, min, max load (kN)]."""
+    rows = [l for l in open(os.path.join(ROOT, "data", name)) if not l.startswith("#")][1:]
+    return [[float(x) for x in l.split(",")] for l in rows]
