@@ -13,7 +13,7 @@ its first mode) until at rest.
 Every finished run is kept in docs/benchmarks/accuracy_cost.json (an interrupted study resumes);
 docs/benchmarks/accuracy_cost.md and accuracy_cost.png are rewritten from it after each run.
 
-Usage: benchmarks/accuracy_cost.py [--only implicit|explicit] [--max-wall 2400] [--report]
+Usage: benchmarks/accuracy_cost.py [--only implicit|explicit] [--timeout 3600] [--memory] [--keys PREFIXES] [--report]
        PDIMPLICIT=/path/to/binary to time a copy while the build directory changes.
 """
 import argparse
@@ -139,16 +139,18 @@ FINDINGS = """## Findings
   with the explicit curve within 0.4 % (RMS of the peak) and 1 % (peak) of the implicit one. The explicit
   path is cheap on this beam because a 50 ms ramp, about 250 periods of its first bending mode, is
   already quasi-static; its cost grows with nodes times steps (dx^-4 at a fixed ramp). The implicit cost
-  is the linear solves: at dx = 5 mm 35 of 42 s, 12,352 GMRES iterations for 743 Newton iterations (the
+  is the linear solves: at dx = 5 mm 34 of 42 s, 12,352 GMRES iterations for 743 Newton iterations (the
   damage limiter's stages make 14 Newton iterations per increment); at dx = 2.5 mm 66 GMRES iterations
   per Newton iteration (ICC(0) degrades as the grid refines) and 933 Newton iterations. What would move
   the ratio: a preconditioner whose iterations do not grow with refinement (GAMG halves the solve at
-  2.5 mm but its AIJ assembly is 4.5 times slower, docs/solvers.md), and fewer limiter stages. The
+  2.5 mm and, since the AIJ row-copy assembly, is the default there; docs/solvers.md), and fewer limiter
+  stages. The
   implicit cost does not depend on the structure's period, the explicit cost does: a beam 8 times larger
   needs a ramp 8 times longer at the same spacing, so the ratio moves toward the implicit path for the
   large beams of the size-effect study.
-- **Elastic cantilever.** One linear solve against a damped explicit run to rest: 33 times (dx = 20 mm)
-  and 130 times (dx = 10 mm) faster implicit, same answer (1.7e-7 apart). The explicit run at dx = 5 mm
+- **Elastic cantilever.** One linear solve against a damped explicit run to rest: 32 times (dx = 20 mm)
+  and 109 times (dx = 10 mm) faster implicit at m = pi (16 to 43 and 96 to 123 times over the horizon
+  ratios), same answer (1.7e-7 apart). The explicit run at dx = 5 mm
   (about 50 minutes) was not made. Error against Timoshenko is not monotone in dx or the horizon ratio
   (pi: 4.9, 2.0, 5.1 % at 20, 10, 5 mm; 3: 1.0, 2.1, 0.9 %): the surface of a 0.1 m section is a
   large share of its nodes at these spacings. At dx = 2.5 mm (691,200 nodes, 39.7 M bonds, one CG solve
@@ -162,16 +164,21 @@ FINDINGS = """## Findings
   half-notched curve against the finest implicit run: 12.7 % at dx = 10 mm, 4.5 % at 5 mm, 0.25 % for
   the explicit run at 2.5 mm. Against experiment the half-notched peak stays 42 % high at every spacing
   (the model gap of docs/softening.md), the unnotched peak is within 4 to 11 % at dx = 10 and 5 mm, but
-  the explicit run at 2.5 mm peaks at 6,040 N (+30 %, above the experimental maximum); without an
-  implicit run at 2.5 mm (half an hour to an hour) inertia at crack initiation and refinement cannot be
-  told apart yet. Horizon ratio at
+  the explicit run at 2.5 mm peaks at 6,040 N (+30 %, above the experimental maximum). The implicit
+  run at 2.5 mm with the same model (docs/softening.md, not in this table) peaks at 5,873 N (+26 %): the
+  refinement makes most of the rise, inertia at crack initiation about 3 %. Horizon ratio at
   dx = 5 mm: m = 2 is three times cheaper but 7.5 % off the finest curve; m = 3, pi and 4 give 3.0, 4.5
   and 2.8 % at 41, 42 and 110 s.
 - **Memory.** The implicit path holds the stiffness, its ICC factor and a 60-vector GMRES basis: 462 MB
   against 175 MB explicit for the half-notched beam at dx = 2.5 mm (1.5 M bonds), 91 against 60 MB at
   5 mm; the elastic cantilever at dx = 5 mm takes 0.35 to 1.8 GB as the horizon ratio goes from 2 to 4.
+  The memory column was measured again with the current binary (the dx = 2.5 mm implicit beam with
+  `-pc_type bjacobi`, the solver it ran with; GAMG, now the default at that size, takes 593 MB):
+  an older binary had read the peak from getrusage, which carries over the peak of the Python process
+  that started it.
 - **Timing conditions.** One rank per run; part of the runs shared the machine with other work on the
-  second core (the dx = 2.5 mm implicit run took 1,482 s here and 1,736 s in docs/benchmarks/gregoire.md).
+  second core (the dx = 2.5 mm implicit run took 1,482 s here and 1,662 s in an earlier run with the second core
+  busy, docs/softening.md).
 """
 
 
@@ -190,7 +197,7 @@ def report(res):
              "configuration (`--memory`; matrices, factors and work vectors are allocated at the first solve).",
              "The Gregoire beams run with `-pd_sc_whole_cells false` (partial volumes in the surface correction,",
              "the model this study was measured on; the shipped scenes now use the thesis's whole cells, which",
-             "lower the peaks by 8 to 9 %, docs/softening.md).", "",
+             "lower the peaks by 6 to 8 %, docs/softening.md).", "",
              "| scene | dx (mm) | m | path | nodes | bonds | error | curve error | vs finest | wall (s) | memory (MB) | Newton / KSP or steps | status |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k in sorted(res, key=lambda s: (s.split("/")[0], -float(s.split("/")[1][3:]), s.split("/")[2], s.split("/")[3])):
@@ -256,11 +263,14 @@ def main():
     ap.add_argument("--timeout", type=int, default=3600)
     ap.add_argument("--report", action="store_true")
     ap.add_argument("--memory", action="store_true", help="measure every point's peak memory on a short run (allocation happens up front)")
+    ap.add_argument("--keys", default="", help="only the points whose key starts with one of these comma-separated prefixes")
     a = ap.parse_args()
     res = load_results(RESULTS)
     for scene, dx, m, paths in ([] if a.report else POINTS):
         for path in paths:
             k = key(scene, dx, m, path)
+            if a.keys and not k.startswith(tuple(a.keys.split(","))):
+                continue
             if a.memory and k in res:
                 short = {"implicit": ["-pd_stop_cmod", "3e-6"] if scene != "cantilever" else [],
                          "explicit": ["-pd_stop_cmod", "1e-9"] if scene != "cantilever" else ["-pd_ramp_time", "1e-5", "-pd_hold_time", "0"]}[path]

@@ -252,7 +252,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   }
   m->linear = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening) ? PETSC_TRUE : PETSC_FALSE;
   /* limiter cap: 10 events per 150,000 bonds by default. N = 10 suits the D = 50 beams at dx = 5 mm
-     (157,000 bonds; N = 1, 10 and 100 give peaks within 0.5 %); at dx = 2.5 mm (1.45 M bonds) N = 10 took
+     (157,000 bonds; N = 1, 10 and 100 give peaks within 1.3 %); at dx = 2.5 mm (1.48 M bonds) N = 10 took
      130 Newton iterations per increment near the peak, N = 100 about 25 (docs/softening.md). */
   m->limiter_max = sc->limiter_max >= 0 ? sc->limiter_max : PetscMax(10, (PetscInt)(10.0 * bd->nbonds_global / 150000.0 + 0.5));
   PetscCall(PDLatticeCreateGhostVec(lat, m->bs, &m->u_local));
