@@ -26,7 +26,7 @@ def common(name, r):
     check(all(math.isfinite(x[k]) for x in c for k in ("load_N", "disp_m", "cmod_m", "stored_J", "dissipated_J")),
           "%s: every row finite (%d rows)" % (name, len(c)))
     check(all(b["broken_bonds"] >= a["broken_bonds"] for a, b in zip(c, c[1:])), "%s: broken bonds never decrease" % name)
-    # the trapezoidal external work along the steps against stored + dissipated (issue: 1 % on every step)
+    # the external work along the steps against stored + dissipated (required: within 1 % on every step)
     check(balance(r) < 0.01, "%s: energy balance on every step within %.2f %% (< 1 %%)" % (name, 100 * balance(r)))
 
 
