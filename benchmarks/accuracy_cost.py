@@ -144,8 +144,8 @@ FINDINGS = """## Findings
   per Newton iteration (ICC(0) degrades as the grid refines) and 933 Newton iterations. What would move
   the ratio: a preconditioner whose iterations do not grow with refinement (GAMG halves the solve at
   2.5 mm and, since the AIJ row-copy assembly, is the default there; docs/solvers.md), and fewer limiter
-  stages. The
-  implicit cost does not depend on the structure's period, the explicit cost does: a beam 8 times larger
+  stages. The implicit cost does not depend on the structure's period, the explicit cost does: a beam 8
+  times larger
   needs a ramp 8 times longer at the same spacing, so the ratio moves toward the implicit path for the
   large beams of the size-effect study.
 - **Elastic cantilever.** One linear solve against a damped explicit run to rest: 32 times (dx = 20 mm)

@@ -16,8 +16,9 @@ import time
 from common import ENV, EXE, OUT, ROOT
 
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
-# the scene's elastic response, one linear solve for a 50 um deflection; partial volumes in the surface correction (the elastic default, on which the
-# committed results were measured; the scene itself now follows the thesis's whole cells)
+# the scene's elastic response, one linear solve for a 50 um deflection; partial volumes in the surface
+# correction (the elastic default, on which the committed results were measured; the scene itself now
+# follows the thesis's whole cells)
 ELASTIC = ["-pd_law", "elastic", "-pd_region2_displacement", "0,0,-5e-5", "-pd_steps", "1", "-pd_stop_cmod", "0",
            "-pd_sc_whole_cells", "false"]
 TIMEOUT = 900
