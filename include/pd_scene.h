@@ -91,6 +91,7 @@ typedef struct {
   PDControl    control;
   /* path following (-pd_control arclength|auto) */
   PDArcType  arc_type;       /* constraint */
+  PetscBool  arc_augmented;  /* linear constraints: one augmented solve per Newton iteration, not two (bordering) */
   PetscReal  arc_initial;    /* first arc length (units of the constraint); 0: from the first load step */
   PetscReal  arc_growth;     /* largest arc length over the first one */
   PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */

@@ -505,6 +505,16 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
       sc->arc_type = (PDArcType)at;
       PetscCheck(sc->arc_type != PD_ARC_CMOD || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
                  "Option -pd_arclength_type: cmod needs a CMOD gauge (-pd_cmod_points)");
+      {
+        static const char *const solves[] = {"bordering", "augmented"};
+        PetscInt                 solve    = 1;
+        PetscCall(
+            PDOptionEnum(PetscOptionsObject, "-pd_arclength_solve",
+                         "Linear systems of a Newton iteration under a linear constraint (cmod, dissipation): augmented (one solve of "
+                         "the tangent bordered by the constraint) or bordering (two solves with the tangent)",
+                         solves, 2, &solve, NULL));
+        sc->arc_augmented = solve == 1 ? PETSC_TRUE : PETSC_FALSE;
+      }
       sc->arc_growth     = 4;
       sc->arc_target_its = 6;
       sc->stop_fraction  = 0.02;

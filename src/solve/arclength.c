@@ -4,7 +4,9 @@
    G(u_f, lambda) = f_int(u_f, lambda u_ref) - lambda f_ref = 0 with dG/dlambda = K_fc u_ref - f_ref.
    Each Newton iteration makes two solves with one operator and one preconditioner (bordering):
    K du_I = -G and K du_II = -dG/dlambda; the update is du_I + dlambda v with v = du_II + u_ref, and
-   dlambda comes from the linearised constraint:
+   dlambda comes from the linearised constraint. For the constraints linear in (u, lambda) (cmod,
+   dissipation) one solve of the tangent bordered by the constraint gives the same update
+   (augmented.c); the direction v is then solved for only at the predictor. The constraints:
      cmod         c.(u - u_n) = dl                          (the gauge opens by dl: CMOD control)
      cylindrical  |u - u_n|^2 = dl^2                        (Crisfield; root nearest the last step)
      spherical    |u - u_n|^2 + psi^2 (lambda - lambda_n)^2 = dl^2, psi = |v| of the first step
@@ -16,6 +18,7 @@
    largest stretch, secant below it) is settled by freezing their branches (see Step); -pd_unload_at
    turns the path for unloading and reloading (LoadReversal). */
 #include "path.h"
+#include "augmented.h"
 
 /* Load reversal (-pd_unload_at): where a path is, given the accepted step's row. */
 typedef struct {
@@ -27,7 +30,9 @@ typedef struct {
   PDModel       *m;
   Mat            J;
   KSP            ksp;
-  Vec            u, fint, R, q, duI, v, w, dprev;
+  Vec            u, fint, R, q, duI, v, w, dprev, row;
+  PDAugmented    aug; /* used for linear constraints unless -pd_arclength_solve bordering */
+  PetscBool      augmented;
   PetscReal      lam;
   PetscReal      psi2;       /* spherical scaling of lambda */
   PetscBool      have_prev;  /* dprev holds the last accepted step */
@@ -57,9 +62,9 @@ static PetscErrorCode Residual(Arc *a, PetscReal *rnorm, PetscReal *fnorm) {
   PetscFunctionReturn(0);
 }
 
-/* Tangent at u, the preconditioner rebuilt every third assembly, and the path direction v per unit
-   lambda: K du_II = -(K u_ref - f_ref) on free dofs, v = du_II + u_ref. */
-static PetscErrorCode TangentAndDirection(Arc *a) {
+/* Tangent at u, the preconditioner rebuilt every third assembly, q = -(K u_ref - f_ref) on free dofs, and
+   (when asked) the path direction v per unit lambda: K du_II = q, v = du_II + u_ref. */
+static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
   PDModel *m = a->m;
   PetscInt n;
 
@@ -74,6 +79,7 @@ static PetscErrorCode TangentAndDirection(Arc *a) {
   PetscCall(VecPointwiseMult(a->w, a->q, m->fixed));
   PetscCall(VecAXPY(a->q, -1, a->w));
   PetscCall(VecScale(a->q, -1));
+  if (!direction) PetscFunctionReturn(0);
   PetscCall(KSPSolve(a->ksp, a->q, a->v));
   PetscCall(KSPGetIterationNumber(a->ksp, &n));
   a->lits += n;
@@ -152,13 +158,56 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
   PetscFunctionReturn(0);
 }
 
+/* The corrector of a linear constraint in one augmented solve (augmented.c), given a->R = -G. The
+   constraint row c (on free dofs) and its lambda coefficient c.u_ref border the tangent; lambda is scaled
+   by |v| so that both unknowns are displacements, and the Schur complement c.v / |v| comes from the
+   predictor's direction v. */
+static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscReal *dlam, PetscInt *its,
+                                      KSPConvergedReason *kr, PetscBool *ok) {
+  PDModel    *m = a->m;
+  PetscScalar cu, cl, cv;
+  PetscReal   rhs, vnorm, t;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecWAXPY(a->w, -1, p->u_n, a->u));
+  if (type == PD_ARC_CMOD) {
+    PetscCall(VecCopy(m->cmod_pattern, a->row));
+    PetscCall(VecDot(a->row, a->w, &cu));
+    rhs = (a->rev.phase == 1 ? -1 : 1) * dl - PetscRealPart(cu);
+  } else { /* dissipation, linearised as in ConstraintUpdate: d g = (f_n - K u_n).du / 2 */
+    PetscScalar fu, fi;
+    PetscCall(VecDot(p->f_n, a->u, &fu));
+    PetscCall(VecDot(a->fint, p->u_n, &fi));
+    rhs = -(0.5 * PetscRealPart(fu - fi) - dl);
+    PetscCall(PDModelTangentApply(m, a->u, p->u_n, a->row));
+    PetscCall(VecAYPX(a->row, -1, p->f_n));
+    PetscCall(VecScale(a->row, 0.5));
+  }
+  PetscCall(VecDot(a->row, m->u_ref, &cl));
+  PetscCall(VecDot(a->row, a->v, &cv));
+  PetscCall(VecPointwiseMult(a->w, a->row, m->fixed));
+  PetscCall(VecAXPY(a->row, -1, a->w)); /* free dofs: the constrained ones move with lambda, in cl */
+  PetscCall(VecNorm(a->v, NORM_2, &vnorm));
+  *ok   = PetscAbsScalar(cv) > 0 && vnorm > 0 ? PETSC_TRUE : PETSC_FALSE;
+  *its  = 0;
+  *kr   = KSP_CONVERGED_ITS;
+  *dlam = 0;
+  if (!*ok) PetscFunctionReturn(0);
+  /* K du - q dlambda = -G with q from TangentAndDirection; the column is -q / |v| */
+  PetscCall(VecAXPBY(a->w, -1 / vnorm, 0, a->q));
+  PetscCall(PDAugmentedSolve(&a->aug, a->w, a->row, PetscRealPart(cl) / vnorm, PetscRealPart(cv) / vnorm, a->R, rhs, a->duI, &t, its, kr));
+  *dlam = t / vnorm;
+  PetscFunctionReturn(0);
+}
+
 /* One step of length dl: predictor along v, then bordered Newton corrections until equilibrium holds,
    the constraint is met and the limiter has no event left. */
 static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscInt *max_events, PetscBool *ok) {
-  PDModel       *m     = a->m;
-  const PetscInt maxit = 25;
-  PetscReal      dlam, rnorm = PETSC_MAX_REAL, fnorm, damp = 1;
-  PetscBool      fine;
+  PDModel        *m     = a->m;
+  const PetscInt  maxit = 25;
+  PetscReal       dlam, rnorm = PETSC_MAX_REAL, fnorm, damp = 1;
+  PetscBool       fine;
+  const PetscBool aug = a->augmented && (type == PD_ARC_CMOD || type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *ok     = PETSC_FALSE;
@@ -167,7 +216,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam = p->lambda_n;
   PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
-  PetscCall(TangentAndDirection(a));
+  PetscCall(TangentAndDirection(a, PETSC_TRUE));
   PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
   a->why = "no predictor meets the constraint";
   if (!fine) PetscFunctionReturn(0);
@@ -176,8 +225,9 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
      soften together takes many grants, each a small perturbation Newton absorbs in a few iterations */
   for (PetscInt k = 0, stages = 0, rises = 0, flips = 0; k < maxit; k++) {
-    PetscInt  n, ncand, granted;
-    PetscReal tol, rprev = rnorm;
+    PetscInt           n, ncand, granted;
+    KSPConvergedReason kr;
+    PetscReal          tol, rprev = rnorm;
     PetscCall(Residual(a, &rnorm, &fnorm));
     /* a bond whose stretch sits at its history flips between the loading branch (consistent slope) and
        unloading (secant) from one iterate to the next, and Newton can cycle between two states. After
@@ -236,23 +286,26 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
       damp  = 1;
       PetscCall(Residual(a, &rnorm, &fnorm));
     }
-    PetscCall(TangentAndDirection(a));
+    /* plain control (dlambda = 0) and the augmented solve need no direction */
+    PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug));
     PetscCall(VecScale(a->R, -1));
-    PetscCall(KSPSolve(a->ksp, a->R, a->duI));
-    PetscCall(KSPGetIterationNumber(a->ksp, &n));
+    if (aug)
+      PetscCall(AugmentedUpdate(a, p, type, dl, &dlam, &n, &kr, &fine));
+    else {
+      PetscCall(KSPSolve(a->ksp, a->R, a->duI));
+      PetscCall(KSPGetIterationNumber(a->ksp, &n));
+      PetscCall(KSPGetConvergedReason(a->ksp, &kr));
+    }
     a->lits += n;
     a->its++;
-    {
-      KSPConvergedReason kr;
-      PetscCall(KSPGetConvergedReason(a->ksp, &kr));
-      a->why = KSPConvergedReasons[kr];
-      if (kr < 0) PetscFunctionReturn(0);
-    }
-    PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_FALSE, &dlam, &fine));
+    a->why = KSPConvergedReasons[kr];
+    if (kr < 0) PetscFunctionReturn(0);
+    if (!aug) PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_FALSE, &dlam, &fine));
     a->why = "the constraint has no real root";
     if (!fine) PetscFunctionReturn(0);
+    /* bordering's v carries u_ref; the augmented du is on free dofs only */
     PetscCall(VecAXPY(a->u, damp, a->duI));
-    PetscCall(VecAXPY(a->u, damp * dlam, a->v));
+    PetscCall(VecAXPY(a->u, damp * dlam, aug ? a->m->u_ref : a->v));
     a->lam += damp * dlam;
   }
   a->why = "Newton iterations exhausted";
@@ -331,7 +384,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
   {
-    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev};
+    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDuplicate(m->f_ref, work[k]));
   }
   PetscCall(PDPathCreate(m, &path));
@@ -342,6 +395,10 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PetscCall(KSPSetFromOptions(a.ksp));
   PetscCall(KSPGetPC(a.ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)a.ksp, KSPPREONLY, &a.direct));
+  /* a direct solver makes the second solve a pair of triangular solves: bordering costs nothing more */
+  a.augmented =
+      sc->arc_augmented && !a.direct && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
+  if (a.augmented) PetscCall(PDAugmentedCreate(a.J, a.ksp, &a.aug));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   while (path.step < maxsteps) {
@@ -427,12 +484,14 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     PCType  pt;
     PetscCall(KSPGetType(a.ksp, &kt));
     PetscCall(PCGetType(pc, &pt));
-    PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "arclength(%s)/%s/%s", PDArcTypes[sc->arc_type], kt, pt));
+    PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "arclength(%s, %s)/%s/%s", PDArcTypes[sc->arc_type],
+                            a.augmented ? "augmented" : "bordering", kt, pt));
   }
+  if (a.augmented) PetscCall(PDAugmentedDestroy(&a.aug));
   PetscCall(KSPDestroy(&a.ksp));
   PetscCall(MatDestroy(&a.J));
   {
-    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &u_prev};
+    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row, &u_prev};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));
   }
   PetscCall(PDPathDestroy(&path));
