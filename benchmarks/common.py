@@ -14,16 +14,20 @@ OUT = os.path.join(ROOT, "docs", "benchmarks")
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
-def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT):
-    """Runs cmd (output to the open files given), killed after timeout seconds.
-    Returns (exit code, wall s, CPU s, timed out). The CPU time is the child's own (wait4), which a second
-    run sharing the two cores does not inflate as it does the wall time."""
+def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT, grace=600):
+    """Runs cmd (output to the open files given), stopped after timeout seconds: SIGTERM, on which
+    pdimplicit finishes the step under way and writes what it traced (status 'interrupted'), then SIGKILL
+    grace seconds later. (Run pdimplicit itself, not mpiexec: Open MPI's launcher kills its ranks a second
+    after forwarding SIGTERM.) Returns (exit code, wall s, CPU s, timed out). The CPU time is the child's
+    own (wait4), which a second run sharing the two cores does not inflate as it does the wall time."""
     t0 = time.time()
     p = subprocess.Popen(cmd, stdout=stdout, stderr=stderr, env=ENV)
-    timer = threading.Timer(timeout, p.kill)
-    timer.start()
+    timers = [threading.Timer(timeout, p.terminate), threading.Timer(timeout + grace, p.kill)]
+    for t in timers:
+        t.start()
     _, status, ru = os.wait4(p.pid, 0)
-    timer.cancel()
+    for t in timers:
+        t.cancel()
     wall = time.time() - t0
     return os.waitstatus_to_exitcode(status), wall, ru.ru_utime + ru.ru_stime, wall >= timeout
 

@@ -137,7 +137,7 @@ def report(res):
               "| series | sizes | B f_t (MPa) | D0 (mm) | sigma_N ratio per doubling of D |", "|---|---|---|---|---|"]
     series = {}
     for k in keys:
-        if "peak" in res[k]:
+        if "peak" in res[k] and res[k]["final_fraction"] < 0.95:  # an interrupted run counts once past its peak
             D, kind, dx, d = parse_key(k)
             series.setdefault((kind, "dx=%g" % dx, "%dd" % d), []).append((D, nominal_strength(D, res[k]["peak"])))
     for (kind, dxs, dim), pts in sorted(series.items()):
@@ -164,7 +164,7 @@ def report(res):
         ax[i].legend(fontsize=7)
     for kind, mk in zip(KINDS, "o^s"):
         pts = sorted((parse_key(k)[0], nominal_strength(parse_key(k)[0], res[k]["peak"]), "dx=%g" % parse_key(k)[2])
-                     for k in keys if parse_key(k)[1] == kind and "peak" in res[k])
+                     for k in keys if parse_key(k)[1] == kind and "peak" in res[k] and res[k]["final_fraction"] < 0.95)
         for dxs in sorted(set(p[2] for p in pts)):
             q = [p for p in pts if p[2] == dxs]
             ax[3].loglog([p[0] for p in q], [p[1] for p in q], mk + ("-" if dxs == "dx=0.005" else "--"), label="%s, %s" % (KINDS[kind], dxs))

@@ -8,3 +8,6 @@ PetscErrorCode PDArcLengthRun(PDModel *, PDRecord *);
 PetscErrorCode PDSolverConfigureKSP(PDModel *, KSP);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
 PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);
+PetscErrorCode PDInterruptInstall(void);
+PetscErrorCode PDInterrupted(MPI_Comm, PetscBool *);
+PetscErrorCode PDStopOnSignal(MPI_Comm, PDRecord *, PetscBool *);

@@ -70,6 +70,7 @@ int main(int argc, char **argv) {
     PetscCall(PetscPrintf(comm, "  %" PetscInt_FMT " dofs without stiffness pinned (%" PetscInt_FMT " nodes without any bond)\n",
                           model.nzero_dofs, model.nisolated));
   PetscCall(PDOutputPrepare(comm, &sc, &rec));
+  PetscCall(PDInterruptInstall()); /* SIGTERM: finish the step, write what was traced */
   if (!dry_run)
     PetscCall(sc.failure_search                    ? PDFailureSearchRun(&model, &rec)
               : sc.explicit_mode                   ? PDExplicitRun(&model, &rec)

@@ -1,13 +1,18 @@
 """Path following (-pd_control arclength|auto) and the hard cases: constraints, separation, snap-back,
 load reversal, stiffness contrast, step size, limiter extremes, MPI determinism, energy balance, and the
-augmented solve against bordering.
-Usage: test_arclength.py constraints|separation|snapback|reversal|contrast|stepsize|limiter|mpi|augmented"""
+augmented solve against bordering, and a run ended by SIGTERM.
+Usage: test_arclength.py constraints|separation|snapback|reversal|contrast|stepsize|limiter|mpi|augmented|interrupt"""
 import math
+import os
+import re
+import signal
+import subprocess
 import sys
+import tempfile
 
 import numpy as np
 
-from pdtest import check, rel, run
+from pdtest import ENV, EXE, Run, check, rel, run, scene
 
 HN2D = "gregoire_d200_hn_2d"
 UN2D = "gregoire_d400_un_2d"
@@ -215,6 +220,37 @@ def augmented():
         check(ka < 0.75 * kb, "%s: %d KSP iterations against bordering's %d (fewer than 0.75 times)" % (kind, ka, kb))
 
 
+def interrupt():
+    # SIGTERM (a batch system's time limit) ends a run after the step under way: curve, summary and that
+    # step's fields are written, the status says so, the exit code is 1 (not finished), and the rows traced
+    # so far are those of an uninterrupted run.
+    opts = ["-pd_dx", "0.01", "-pd_control", "arclength"]
+    outdir = tempfile.mkdtemp(prefix="pdtest_")
+    p = subprocess.Popen([EXE, "-options_file", scene(HN2D), *opts, "-pd_output_dir", outdir, "-pd_progress"], stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE, env=ENV)
+    seen = b""
+    while not re.search(rb"step 12 ", seen):  # the progress display, one entry per accepted step
+        chunk = os.read(p.stderr.fileno(), 4096)
+        if not chunk:
+            break
+        seen += chunk
+    p.send_signal(signal.SIGTERM)
+    p.stderr.read()
+    p.wait()
+    r = Run(outdir, p)
+    check(p.returncode == 1, "exit code %d after SIGTERM (1: stopped before the end)" % p.returncode)
+    s = r.summary
+    check(s["status"].startswith("interrupted by SIGTERM after step") and not s["converged"], "status: %s" % s["status"])
+    c = r.curve
+    check(s["steps"] >= 12 and int(c[-1]["step"]) == s["steps"], "curve written to the last step, %d" % s["steps"])
+    _, u, _ = r.fields(s["steps"])
+    check(np.isfinite(u).all() and len(u) > 0, "fields of step %d written (%d nodes)" % (s["steps"], len(u)))
+    full = run(HN2D, *opts).curve
+    worst = max(abs(x["load_N"] - y["load_N"]) / max(abs(z["load_N"]) for z in full) for x, y in zip(c, full))
+    check(len(full) > len(c) and worst < 1e-12, "the %d rows equal the uninterrupted run's first rows (largest difference %.1e)" % (len(c), worst))
+
+
 if __name__ == "__main__":
     {"constraints": constraints, "separation": separation, "snapback": snapback, "reversal": reversal, "contrast": contrast,
-     "stepsize": stepsize, "limiter": limiter, "mpi": mpi, "augmented": augmented}[sys.argv[1]]()
+     "stepsize": stepsize, "limiter": limiter, "mpi": mpi, "augmented": augmented,
+     "interrupt": interrupt}[sys.argv[1]]()

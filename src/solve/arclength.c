@@ -469,6 +469,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
                               (double)sc->stop_fraction, (double)peak));
     } else if (path.lambda_n >= sc->lambda_max * (1 - 1e-12))
       stop = PETSC_TRUE;
+    if (!stop) PetscCall(PDStopOnSignal(comm, rec, &stop));
     PetscCall(PDProgress(comm, sc, &row, stop));
     if (stop || (sc->fields_every > 0 && path.step % sc->fields_every == 0)) PetscCall(PDFieldsWrite(m, rec, path.step, path.u_n));
     if (stop) break;

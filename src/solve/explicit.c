@@ -291,8 +291,12 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
     if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;
+    if (!c->stopped) {
+      PetscCall(PDInterrupted(m->lat->comm, &c->interrupted));
+      c->stopped = c->interrupted;
+    }
     PetscCall(PDProgress(m->lat->comm, m->scene, &row, c->stopped));
-    if (c->cmod_reached) PetscCall(PDFieldsWrite(m, c->rec, step, u));
+    if (c->cmod_reached || c->interrupted) PetscCall(PDFieldsWrite(m, c->rec, step, u));
     PetscCall(VecRestoreSubVector(X, c->is_v, &v));
     PetscCall(VecRestoreSubVector(X, c->is_u, &u));
   }
@@ -375,7 +379,7 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   PetscFunctionBeginUser;
   c->lambda_max = lambda_max;
   c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
-  c->stopped = c->cmod_reached = c->blew_up = PETSC_FALSE;
+  c->stopped = c->cmod_reached = c->blew_up = c->interrupted = PETSC_FALSE;
   if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
   m->broken     = 0;
   c->rec->nrows = 0;
@@ -430,7 +434,10 @@ PetscErrorCode PDExplicitStatus(PDExplicit *c) {
                             (double)c->ds_peak, rec->time_steps, (double)c->dt, (double)c->m->scene->dt_safety));
   } else if (c->cmod_reached)
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)c->m->scene->stop_cmod));
-  else if (c->reason < 0) {
+  else if (c->interrupted) {
+    rec->converged = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "interrupted by SIGTERM after time step %" PetscInt_FMT, rec->time_steps));
+  } else if (c->reason < 0) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "time integration stopped: %s", TSConvergedReasons[c->reason]));
   } else
@@ -446,7 +453,7 @@ PetscErrorCode PDExplicitRun(PDModel *m, PDRecord *rec) {
   PetscCall(PDExplicitCreate(m, rec, &c));
   PetscCall(PDExplicitSolve(&c, m->scene->lambda_max));
   PetscCall(PDExplicitStatus(&c));
-  if (rec->converged && !c.cmod_reached) {
+  if (rec->converged && !c.cmod_reached) { /* (an interrupted run wrote its fields when it stopped) */
     Vec u;
     PetscCall(VecGetSubVector(c.X, c.is_u, &u));
     PetscCall(PDFieldsWrite(m, rec, rec->time_steps, u));

@@ -33,6 +33,7 @@ struct PDExplicit {
   PetscBool         stopped;      /* the CMOD stop or the monitor ended the integration */
   PetscBool         cmod_reached; /* the CMOD stop was reached */
   PetscBool         blew_up;      /* non-finite or runaway state */
+  PetscBool         interrupted;  /* SIGTERM (interrupt.c) ended the integration at a recorded row */
   Vec               adr_r, adr_u; /* dynamic relaxation: out-of-balance force and displacement at the last evaluation */
   PetscReal         adr_c;        /* dynamic relaxation: damping coefficient of the step (1/step) */
   TSConvergedReason reason;

@@ -149,6 +149,10 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
     jd.verdict                             = 0;
     PetscCall(PDExplicitSolve(&c, T / P));
     total_steps += rec->time_steps;
+    if (c.interrupted) { /* the trial under way is not judged */
+      rec->ntrials--;
+      break;
+    }
     PetscCheck(!c.blew_up, comm, PETSC_ERR_NOT_CONVERGED,
                "Failure search: trial at %.1f N became unstable (stretch %.3g in one step); lower -pd_dt_safety", (double)T,
                (double)c.ds_peak);
@@ -184,7 +188,12 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
   }
   rec->time_steps = total_steps;
   rec->steps      = rec->ntrials;
-  if (rec->fail_lower > 0 && rec->fail_upper > 0)
+  if (c.interrupted) {
+    rec->converged = PETSC_FALSE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status,
+                            "interrupted by SIGTERM after %" PetscInt_FMT " trials: failure load between %.1f and %.1f N so far",
+                            rec->ntrials, (double)L, (double)U));
+  } else if (rec->fail_lower > 0 && rec->fail_upper > 0)
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: failure load between %.1f and %.1f N (%" PetscInt_FMT " trials)",
                             (double)rec->fail_lower, (double)rec->fail_upper, rec->ntrials));
   else {

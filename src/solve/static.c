@@ -182,6 +182,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
     }
     if (lambda_n >= sc->lambda_max * (1 - 1e-12)) stop = PETSC_TRUE;
+    if (!stop) PetscCall(PDStopOnSignal(comm, rec, &stop));
     PetscCall(PDProgress(comm, sc, &row, stop));
     if (FieldsDue(sc, step, stop)) PetscCall(PDFieldsWrite(m, rec, step, u));
     if (stop) break;
