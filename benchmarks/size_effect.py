@@ -76,10 +76,11 @@ def portable(command):
 
 def run_one(D, kind, dx, timeout, dim=3):
     out = tempfile.mkdtemp(prefix="pdsize_")
-    cmd = [EXE] + (scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)) + ["-pd_output_dir", out]
+    # the progress display (one entry per step, on stderr) goes to log.txt, to follow a long run
+    cmd = [EXE] + (scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)) + ["-pd_progress", "-pd_output_dir", out]
     with open(os.path.join(out, "log.txt"), "w") as log:
         code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
-    r = {"wall": wall, "cpu": cpu, "returncode": code, "command": portable(" ".join(cmd[1:-2]))}
+    r = {"wall": wall, "cpu": cpu, "returncode": code, "command": portable(" ".join(cmd[1:-3]))}
     if not os.path.exists(os.path.join(out, "summary.json")):
         r["status"] = "stopped after %d s" % timeout if timed_out else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
         return r
