@@ -145,9 +145,8 @@ FINDINGS = """## Findings
   the ratio: a preconditioner whose iterations do not grow with refinement (GAMG halves the solve at
   2.5 mm and, since the AIJ row-copy assembly, is the default there; docs/solvers.md), and fewer limiter
   stages. The implicit cost does not depend on the structure's period, the explicit cost does: a beam 8
-  times larger
-  needs a ramp 8 times longer at the same spacing, so the ratio moves toward the implicit path for the
-  large beams of the size-effect study.
+  times larger needs a ramp 8 times longer at the same spacing, so the ratio moves toward the implicit
+  path for the large beams of the size-effect study.
 - **Elastic cantilever.** One linear solve against a damped explicit run to rest: 32 times (dx = 20 mm)
   and 109 times (dx = 10 mm) faster implicit at m = pi (16 to 43 and 96 to 123 times over the horizon
   ratios), same answer (1.7e-7 apart). The explicit run at dx = 5 mm

@@ -34,6 +34,7 @@ typedef struct {
   PDAugmented    aug; /* used for linear constraints unless -pd_arclength_solve bordering */
   PetscBool      augmented;
   PetscReal      lam;
+  PetscReal      vnorm;      /* |v|, with v */
   PetscReal      psi2;       /* spherical scaling of lambda */
   PetscBool      have_prev;  /* dprev holds the last accepted step */
   PetscInt       its, lits;  /* this step */
@@ -84,6 +85,7 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
   PetscCall(KSPGetIterationNumber(a->ksp, &n));
   a->lits += n;
   PetscCall(VecAXPY(a->v, 1, m->u_ref));
+  PetscCall(VecNorm(a->v, NORM_2, &a->vnorm));
   PetscFunctionReturn(0);
 }
 
@@ -164,9 +166,10 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
    predictor's direction v. */
 static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscReal *dlam, PetscInt *its,
                                       KSPConvergedReason *kr, PetscBool *ok) {
-  PDModel    *m = a->m;
-  PetscScalar cu, cl, cv;
-  PetscReal   rhs, vnorm, t;
+  PDModel        *m = a->m;
+  PetscScalar     cu, cl, cv;
+  PetscReal       rhs, t;
+  const PetscReal vnorm = a->vnorm;
 
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(a->w, -1, p->u_n, a->u));
@@ -187,7 +190,6 @@ static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscRea
   PetscCall(VecDot(a->row, a->v, &cv));
   PetscCall(VecPointwiseMult(a->w, a->row, m->fixed));
   PetscCall(VecAXPY(a->row, -1, a->w)); /* free dofs: the constrained ones move with lambda, in cl */
-  PetscCall(VecNorm(a->v, NORM_2, &vnorm));
   *ok   = PetscAbsScalar(cv) > 0 && vnorm > 0 ? PETSC_TRUE : PETSC_FALSE;
   *its  = 0;
   *kr   = KSP_CONVERGED_ITS;
@@ -427,11 +429,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
         dl *= 0.5;
       continue;
     }
-    if (path.step == 0) { /* spherical scaling from the first, elastic, direction */
-      PetscScalar vv;
-      PetscCall(VecDot(a.v, a.v, &vv));
-      a.psi2 = PetscRealPart(vv);
-    }
+    if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
     d_prev   = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */

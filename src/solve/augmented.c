@@ -26,13 +26,15 @@
 static PetscErrorCode ApplyLowerTriangular(PC pc, Vec x, Vec y) {
   PDAugmented *aug;
   Vec          xu, yu, xl, yl, c;
+  PC           pk; /* the Newton preconditioner of K, shared, set up by knewton */
   PetscScalar  xlam, cy;
 
   PetscFunctionBeginUser;
   PetscCall(PCShellGetContext(pc, &aug));
   PetscCall(VecGetSubVector(x, aug->is_u, &xu));
   PetscCall(VecGetSubVector(y, aug->is_u, &yu));
-  PetscCall(PCApply(aug->pk, xu, yu));
+  PetscCall(KSPGetPC(aug->knewton, &pk));
+  PetscCall(PCApply(pk, xu, yu));
   PetscCall(MatDenseGetColumnVecRead(aug->Cc, 0, &c));
   PetscCall(VecDot(yu, c, &cy));
   PetscCall(MatDenseRestoreColumnVecRead(aug->Cc, 0, &c));
@@ -92,7 +94,6 @@ PetscErrorCode PDAugmentedCreate(Mat K, KSP knewton, PDAugmented *aug) {
   PetscCall(VecDuplicate(aug->x, &aug->b));
 
   aug->knewton = knewton;
-  PetscCall(KSPGetPC(knewton, &aug->pk));
   PetscCall(KSPCreate(comm, &aug->ksp));
   PetscCall(KSPSetOptionsPrefix(aug->ksp, "pd_augmented_"));
   PetscCall(KSPSetType(aug->ksp, KSPGMRES));

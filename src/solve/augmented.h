@@ -6,7 +6,6 @@ typedef struct {
   Mat       A;           /* [K, Q; C, D]: the tangent bordered by the lambda column and the constraint row */
   Mat       Q, Cc, C, D; /* n x 1 column, n x 1 row (C is its transpose), 1 x 1 corner */
   KSP       ksp;         /* GMRES on A, preconditioned by the shell below */
-  PC        pk;          /* the Newton preconditioner of K, shared, never rebuilt here */
   KSP       knewton;     /* its KSP, which sets it up (and lags it) */
   IS        is_u, is_l;  /* the two blocks of an augmented vector */
   Vec       x, b;
