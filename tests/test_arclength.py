@@ -1,5 +1,5 @@
 """Path following (-pd_control arclength|auto) and the hard cases: constraints, separation, snap-back,
-load reversal, stiffness contrast, step size, limiter extremes, MPI determinism, energy balance, and the
+load reversal, stiffness contrast, step size, limiter extremes, MPI determinism, energy balance, the
 augmented solve against bordering, and a run ended by SIGTERM.
 Usage: test_arclength.py constraints|separation|snapback|reversal|contrast|stepsize|limiter|mpi|augmented|interrupt"""
 import math
