@@ -3,11 +3,16 @@
 0.5 D) in 3D under path following (CMOD control), traced past the peak to 10 % of it.
 
 Each finished run is stored in docs/benchmarks/size_effect.json, so an interrupted study resumes where it
-stopped; docs/benchmarks/size_effect.md (tables) and size_effect.png (load-CMOD curves, nominal strength
-against size) are rewritten from that file after every run. Runs go two at a time (one rank each).
+stopped; docs/benchmarks/size_effect_table.md (tables) and size_effect.png (load-CMOD curves, nominal
+strength against size) are rewritten from that file after every run. Runs go two at a time (one rank each).
+
+A run longer than --timeout is stopped with SIGTERM and keeps what it traced, with a checkpoint (written
+every 25 steps too). Its output stays in $PDSIZE_WORK (default /tmp/pdsize_work); --resume goes on from
+the checkpoints of the selected runs that were interrupted, one leg of at most --timeout each, and the
+stored result then covers all legs (CPU and wall time summed).
 
 Usage: benchmarks/size_effect.py [--jobs 2] [--dx 5e-3,10e-3] [--sizes 50,100,200,400] [--timeout 7200]
-       [--report]     (--report only rewrites the tables and plot)
+       [--resume] [--report]     (--report only rewrites the tables and plot)
 """
 import argparse
 import concurrent.futures
@@ -74,15 +79,34 @@ def portable(command):
     return re.sub(r"\S*pdsize_scenes_[^/\s]*/", "<scripts/gregoire_scenes.py output>/", command)
 
 
-def run_one(D, kind, dx, timeout, dim=3):
-    out = tempfile.mkdtemp(prefix="pdsize_")
+WORK = os.environ.get("PDSIZE_WORK", "/tmp/pdsize_work")
+CHECKPOINT_EVERY = 25  # steps: at D = 200 mm in 3D about every 10 to 20 minutes, 100 MB each
+
+
+def resumable(r):
+    """A stored run that stopped on its time limit and left a checkpoint to go on from."""
+    return r.get("status", "").startswith(("interrupted", "stopped after")) and os.path.exists(r.get("checkpoint", ""))
+
+
+def run_one(D, kind, dx, timeout, dim=3, prev=None):
+    """One leg of a run: from the start, or from prev's checkpoint (prev: the stored result of the legs so far)."""
+    os.makedirs(WORK, exist_ok=True)
+    out = tempfile.mkdtemp(prefix=key(D, kind, dx, dim).replace("/", "_").replace("=", "") + "_", dir=WORK)
+    scene = scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)
     # the progress display (one entry per step, on stderr) goes to log.txt, to follow a long run
-    cmd = [EXE] + (scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)) + ["-pd_progress", "-pd_output_dir", out]
+    cmd = [EXE] + scene + ["-pd_checkpoint_every", str(CHECKPOINT_EVERY)]
+    if prev:
+        cmd += ["-pd_restart", prev["checkpoint"]]
+    cmd += ["-pd_progress", "-pd_output_dir", out]
     with open(os.path.join(out, "log.txt"), "w") as log:
         code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
-    r = {"wall": wall, "cpu": cpu, "returncode": code, "command": portable(" ".join(cmd[1:-3]))}
+    legs = prev.get("legs", 1) + 1 if prev else 1
+    r = {"wall": wall + (prev["wall"] if prev else 0), "cpu": cpu + (prev.get("cpu", 0) if prev else 0), "returncode": code,
+         "command": portable(" ".join(scene)), "legs": legs}
+    if os.path.exists(os.path.join(out, "checkpoint.h5")):
+        r["checkpoint"] = os.path.join(out, "checkpoint.h5")
     if not os.path.exists(os.path.join(out, "summary.json")):
-        r["status"] = "stopped after %d s" % timeout if timed_out else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
+        r["status"] = "stopped after %d s" % r["wall"] if timed_out else "failed: " + open(os.path.join(out, "log.txt")).read()[-100:]
         return r
     r.update(parse_run(out))
     return r
@@ -131,7 +155,7 @@ def report(res):
             D, KINDS[kind], dim, 1e3 * dx, r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
             1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["cpu"] if "cpu" in r else "",
             "%.0f" % r["memory_MB"] if r.get("memory_MB") else "",
-            r["status"][:60]))
+            r["status"][:60] + (" (%d legs)" % r["legs"] if r.get("legs", 1) > 1 else "")))
     # Bazant's size effect law for notched beams, sigma_N = B f_t / sqrt(1 + D / D0): 1 / sigma_N^2 is linear
     # in D, so a least-squares line gives D0 = intercept / slope and B f_t = intercept^-1/2
     lines += ["", "Size effect law fitted to each series with three or more sizes (sigma_N in MPa, D0 in mm):", "",
@@ -184,6 +208,7 @@ def main():
     ap.add_argument("--timeout", type=float, default=7200)
     ap.add_argument("--dim", type=int, default=3, help="3, or 2 for plane-stress versions of the beams")
     ap.add_argument("--redo", default="", help="comma-separated result keys to run again")
+    ap.add_argument("--resume", action="store_true", help="go on with the selected runs that stopped on their time limit")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
     res = load_results(RESULTS)
@@ -191,9 +216,10 @@ def main():
     done = set(res) - set(a.redo.split(","))
     if not a.report:
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
-                if key(D, kind, float(dx), a.dim) not in done]  # in the order given
+                if key(D, kind, float(dx), a.dim) not in done or (a.resume and resumable(res[key(D, kind, float(dx), a.dim)]))]
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim): (D, kind, dx) for D, kind, dx in todo}
+            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim, res[key(D, kind, dx, a.dim)] if key(D, kind, dx, a.dim) in done else None):
+                    (D, kind, dx) for D, kind, dx in todo}
             for f in concurrent.futures.as_completed(futs):
                 D, kind, dx = futs[f]
                 k = key(D, kind, dx, a.dim)

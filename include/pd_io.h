@@ -25,6 +25,8 @@ typedef struct {
   PetscReal   matrix_nonzeros; /* stored scalar entries of the stiffness */
   char        solver[128];     /* snes/ksp/pc types actually used */
   char        dir[PETSC_MAX_PATH_LEN];
+  char        restart_from[PETSC_MAX_PATH_LEN]; /* checkpoint the path went on from, or empty */
+  PetscInt    restart_step;                     /* its step */
   /* explicit path */
   PetscReal dt_stable, dt; /* stable estimate and step used (s) */
   PetscInt  time_steps;
@@ -53,3 +55,9 @@ PetscErrorCode PDSummaryWrite(MPI_Comm, const PDModel *, const PDRecord *);
 PetscErrorCode PDCurvePlotWrite(MPI_Comm, const PDScene *, const PDRecord *);
 PetscErrorCode PDProgress(MPI_Comm, const PDScene *, const PDCurveRow *, PetscBool last);
 PetscErrorCode PDFileCommit(MPI_Comm, const char *dir, const char *name);
+/* checkpoint.h5: a path's state at an accepted step (-pd_checkpoint_every, -pd_restart) */
+PetscErrorCode PDCheckpointValidate(const PDModel *, const char *path);
+PetscErrorCode PDCheckpointWrite(PDModel *, PDRecord *, PetscInt nvec, const Vec vec[], const char *const vec_name[], PetscInt nreal,
+                                 const char *const real_name[], const PetscReal real[]);
+PetscErrorCode PDCheckpointRead(PDModel *, PDRecord *, const char *path, PetscInt nvec, Vec vec[], const char *const vec_name[],
+                                PetscInt nreal, const char *const real_name[], PetscReal real[]);

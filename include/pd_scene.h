@@ -115,6 +115,8 @@ typedef struct {
   PetscReal  cmod[6]; /* two gauge points */
   PetscInt   steps;   /* load steps */
   PetscInt   fields_every;
+  PetscInt   checkpoint_every;            /* path following: write checkpoint.h5 every N accepted steps; 0: only when stopped early */
+  char       restart[PETSC_MAX_PATH_LEN]; /* path following: checkpoint to go on from, or empty */
   PetscBool  progress;
   PetscBool  dry_run; /* build the scene and report it, do not solve */
   /* explicit path (-pd_mode explicit) */

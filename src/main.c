@@ -22,6 +22,7 @@ static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, P
     PetscCall(PDBondsCreate(sc, lat, keep, bonds));
   }
   PetscCall(PDModelCreate(sc, lat, bonds, model));
+  if (sc->restart[0]) PetscCall(PDCheckpointValidate(model, sc->restart));
   PetscCall(PetscTime(&t1));
   rec->t_setup = t1 - t0;
   PetscFunctionReturn(0);

@@ -36,8 +36,25 @@ CASES = [
 ]
 
 
+def checkpoint_cases():
+    """Restarts that must be refused: a missing file, a file that is not HDF5, a checkpoint of another scene
+    (the same beam at another spacing, or with another tensile strength), and a restart outside path
+    following."""
+    good = run("gregoire_d200_hn_2d", "-pd_dx", "0.01", "-pd_control", "arclength", "-pd_stop_fraction", "0.9",
+               "-pd_checkpoint_every", "5")
+    ck = os.path.join(good.dir, "checkpoint.h5")
+    check(os.path.exists(ck), "a checkpoint to restart from: %s" % ck)
+    arc = ["-pd_control", "arclength"]
+    return [("gregoire_d200_hn_2d", arc + ["-pd_restart", ck + ".missing"], "-pd_restart"),
+            ("gregoire_d200_hn_2d", arc + ["-pd_restart", os.path.join(good.dir, "curve.csv")], "-pd_restart"),
+            ("gregoire_d200_hn_2d", arc + ["-pd_restart", ck], "-pd_restart"),  # dx 5 mm against the checkpoint's 10 mm
+            ("gregoire_d200_hn_2d", arc + ["-pd_dx", "0.01", "-pd_ft", "3e6", "-pd_restart", ck], "-pd_restart"),  # other strength
+            ("gregoire_d200_hn_2d", ["-pd_dx", "0.01", "-pd_restart", ck], "-pd_restart"),  # displacement control
+            ("gregoire_d200_hn_2d", arc + ["-pd_checkpoint_every", "-1"], "-pd_checkpoint_every")]
+
+
 def main():
-    for name, args, needle in CASES:
+    for name, args, needle in CASES + checkpoint_cases():
         out = os.path.join(tempfile.mkdtemp(prefix="pdbad_"), "out")
         r = run(name, *args, expect_ok=False, outdir=out)
         msg = (r.stdout + r.stderr).strip().splitlines()

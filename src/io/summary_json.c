@@ -140,6 +140,9 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          m->broken, m->softening_bonds, rec->max_events_per_its, m->max_regularised));
   PetscCall(PetscFPrintf(comm, fp, "  \"peak_load_N\": %s,\n  \"disp_at_peak_m\": %s,\n  \"final_load_N\": %s,\n", peak, dpeak, fin));
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
+  if (rec->restart_from[0])
+    PetscCall(
+        PetscFPrintf(comm, fp, "  \"restart\": {\"from\": \"%s\", \"step\": %" PetscInt_FMT "},\n", rec->restart_from, rec->restart_step));
   PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n",
                          (double)rec->t_setup, (double)m->t_assembly, (double)rec->t_solve, (double)rec->t_output));
   {

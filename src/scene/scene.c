@@ -623,6 +623,19 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_fields_every", "Write fields every N steps (0: last step only)", &sc->fields_every, NULL));
   PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT,
              sc->fields_every);
+  {
+    PetscBool every, restart;
+    PetscCall(PDOptionInt(PetscOptionsObject, "-pd_checkpoint_every",
+                          "Path following: write checkpoint.h5 every N accepted steps (0: only when the run stops early)",
+                          &sc->checkpoint_every, &every));
+    PetscCheck(sc->checkpoint_every >= 0, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_checkpoint_every: must be non-negative, got %" PetscInt_FMT, sc->checkpoint_every);
+    PetscCall(PDOptionString(PetscOptionsObject, "-pd_restart", "Path following: go on from this checkpoint.h5 of the same scene",
+                             sc->restart, sizeof sc->restart, &restart));
+    PetscCheck(!(every || restart) || (sc->control >= PD_CONTROL_ARCLENGTH && !sc->explicit_mode), comm, PETSC_ERR_USER_INPUT,
+               "Option %s: checkpoints belong to path following (-pd_control arclength or auto, implicit)",
+               restart ? "-pd_restart" : "-pd_checkpoint_every");
+  }
   PetscCall(PetscSNPrintf(sc->output_dir, sizeof sc->output_dir, "output/%s", sc->name));
   PetscCall(PDOptionString(PetscOptionsObject, "-pd_output_dir", "Output directory", sc->output_dir, sizeof sc->output_dir, NULL));
   PetscCall(PDOptionString(PetscOptionsObject, "-pd_data_file",

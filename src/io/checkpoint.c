@@ -1,0 +1,305 @@
+/* checkpoint.h5: the state of a quasi-static path at an accepted step, so that a run stopped by a time
+   limit (SIGTERM) or by a failed step goes on from there with -pd_restart instead of from the start.
+   A large 3D beam takes hours per curve; this is what lets it be traced in legs.
+
+   What it holds, through PETSc's HDF5 viewer:
+   - the path vectors the driver names (displacement, internal force, last step), in global node order;
+   - the bond history, kappa and the limiter level, laid out per owned node and per neighbour in global
+     id order (the stiffness rows). That layout depends on the lattice only, not on the partition, so a
+     checkpoint written with one rank count is read with any other;
+   - the curve rows and run totals, so curve.csv and summary.json cover the whole path;
+   - the driver's scalars as named attributes;
+   - a fingerprint of the scene: node, bond and dof counts and two sums over the bonds (stiffness
+     coefficients and critical stretches). A changed geometry, modulus, strength, fracture energy, horizon
+     or correction changes one of them, and the restart is refused before any output is written.
+   The file is written under a temporary name and renamed once complete. */
+#include "pd_io.h"
+#include <petscviewerhdf5.h>
+#include <stdio.h>
+#include <string.h>
+
+#define ROW_FIELDS 14
+
+static const char *const fingerprint_names[] = {"nodes", "bonds", "dofs_per_node", "bond_stiffness_sum", "critical_stretch_sum"};
+#define NFINGERPRINT 5
+
+static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) {
+  const PDBonds *bd      = m->bonds;
+  PetscReal      mine[2] = {0, 0}, sum[2];
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PDLaw *law = &m->law[bd->material[e]];
+    if (!PDBondCountedHere(m->lat, bd, e)) continue;
+    mine[0] += bd->coef[e];
+    if (law->kind != PD_LAW_ELASTIC) mine[1] += m->thr ? m->thr[e].sc : law->nominal.sc;
+  }
+  PetscCall(MPIU_Allreduce(mine, sum, 2, MPIU_REAL, MPI_SUM, m->lat->comm));
+  fp[0] = (PetscReal)m->lat->nglobal;
+  fp[1] = (PetscReal)bd->nbonds_global;
+  fp[2] = (PetscReal)m->bs;
+  fp[3] = sum[0];
+  fp[4] = sum[1];
+  PetscFunctionReturn(0);
+}
+
+/* The file must exist, be HDF5 (its signature, checked here so the message names the option rather than
+   an HDF5 call), carry the checkpoint mark and match this scene's fingerprint. */
+PetscErrorCode PDCheckpointValidate(const PDModel *m, const char *path) {
+  MPI_Comm    comm = m->lat->comm;
+  PetscBool   exists, mark;
+  PetscMPIInt rank;
+  int         hdf5 = 0;
+  PetscViewer v;
+  PetscReal   fp[NFINGERPRINT], theirs;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTestFile(path, 'r', &exists));
+  PetscCheck(exists, comm, PETSC_ERR_FILE_OPEN, "Option -pd_restart: cannot read '%s'", path);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    static const unsigned char sig[8] = {0x89, 'H', 'D', 'F', '\r', '\n', 0x1a, '\n'};
+    unsigned char              head[8];
+    FILE                      *f = fopen(path, "rb");
+    hdf5                         = f && fread(head, 1, 8, f) == 8 && !memcmp(head, sig, 8);
+    if (f) fclose(f);
+  }
+  PetscCallMPI(MPI_Bcast(&hdf5, 1, MPI_INT, 0, comm));
+  PetscCheck(hdf5, comm, PETSC_ERR_FILE_READ, "Option -pd_restart: '%s' is not an HDF5 file", path);
+  PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_READ, &v));
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "pdimplicit_checkpoint", &mark));
+  if (!mark) PetscCall(PetscViewerDestroy(&v));
+  PetscCheck(mark, comm, PETSC_ERR_FILE_READ, "Option -pd_restart: '%s' is not a pdimplicit checkpoint", path);
+  PetscCall(Fingerprint(m, fp));
+  for (PetscInt k = 0; k < NFINGERPRINT; k++) {
+    PetscReal tol;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", fingerprint_names[k], PETSC_REAL, NULL, &theirs));
+    /* the sums are reduced in another order on another rank count: round-off, not a different scene */
+    tol = k < 3 ? 0 : 1e-9 * PetscAbsReal(fp[k]);
+    if (PetscAbsReal(theirs - fp[k]) > tol) PetscCall(PetscViewerDestroy(&v));
+    PetscCheck(PetscAbsReal(theirs - fp[k]) <= tol, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_restart: '%s' belongs to another scene: its %s is %.10g, this scene's is %.10g", path, fingerprint_names[k],
+               (double)theirs, (double)fp[k]);
+  }
+  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+static void RowPack(const PDCurveRow *r, PetscScalar *a) {
+  const PetscReal v[ROW_FIELDS] = {(PetscReal)r->step,
+                                   (PetscReal)r->newton_its,
+                                   (PetscReal)r->ksp_its,
+                                   (PetscReal)r->broken_bonds,
+                                   r->lambda,
+                                   r->load,
+                                   r->disp,
+                                   r->cmod,
+                                   r->wall,
+                                   r->external,
+                                   r->stored,
+                                   r->dissipated,
+                                   r->kinetic,
+                                   r->damped};
+  for (PetscInt k = 0; k < ROW_FIELDS; k++) a[k] = v[k];
+}
+
+static void RowUnpack(const PetscScalar *a, PDCurveRow *r) {
+  r->step         = (PetscInt)PetscRealPart(a[0]);
+  r->newton_its   = (PetscInt)PetscRealPart(a[1]);
+  r->ksp_its      = (PetscInt)PetscRealPart(a[2]);
+  r->broken_bonds = (PetscInt)PetscRealPart(a[3]);
+  r->lambda       = PetscRealPart(a[4]);
+  r->load         = PetscRealPart(a[5]);
+  r->disp         = PetscRealPart(a[6]);
+  r->cmod         = PetscRealPart(a[7]);
+  r->wall         = PetscRealPart(a[8]);
+  r->external     = PetscRealPart(a[9]);
+  r->stored       = PetscRealPart(a[10]);
+  r->dissipated   = PetscRealPart(a[11]);
+  r->kinetic      = PetscRealPart(a[12]);
+  r->damped       = PetscRealPart(a[13]);
+}
+
+/* Bond history as two vectors over the incidence entries of owned nodes (see the head of the file). */
+static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level) {
+  const PetscInt n = m->bonds->inc_start[m->lat->nowned];
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(m->lat->comm, n, PETSC_DETERMINE, kappa));
+  PetscCall(VecDuplicate(*kappa, level));
+  PetscCall(PetscObjectSetName((PetscObject)*kappa, "kappa"));
+  PetscCall(PetscObjectSetName((PetscObject)*level, "level"));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteHistory(const PDModel *m, PetscViewer v) {
+  const PDBonds *bd = m->bonds;
+  Vec            K, L;
+  PetscScalar   *k, *l;
+
+  PetscFunctionBeginUser;
+  PetscCall(HistoryVecs(m, &K, &L));
+  PetscCall(VecGetArray(K, &k));
+  PetscCall(VecGetArray(L, &l));
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
+    k[p] = m->kappa[bd->inc_bond[p]];
+    l[p] = m->level_n[bd->inc_bond[p]];
+  }
+  PetscCall(VecRestoreArray(K, &k));
+  PetscCall(VecRestoreArray(L, &l));
+  PetscCall(VecView(K, v));
+  PetscCall(VecView(L, v));
+  PetscCall(VecDestroy(&K));
+  PetscCall(VecDestroy(&L));
+  PetscFunctionReturn(0);
+}
+
+/* Every bond has an owned end, so every bond is read; a bond with both ends owned is read twice, equal. */
+static PetscErrorCode ReadHistory(PDModel *m, PetscViewer v) {
+  const PDBonds     *bd = m->bonds;
+  Vec                K, L;
+  const PetscScalar *k, *l;
+
+  PetscFunctionBeginUser;
+  PetscCall(HistoryVecs(m, &K, &L));
+  PetscCall(VecLoad(K, v));
+  PetscCall(VecLoad(L, v));
+  PetscCall(VecGetArrayRead(K, &k));
+  PetscCall(VecGetArrayRead(L, &l));
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
+    const PetscInt e = bd->inc_bond[p];
+    m->kappa[e]      = PetscRealPart(k[p]);
+    m->level[e] = m->level_n[e] = (unsigned char)PetscRealPart(l[p]);
+  }
+  PetscCall(VecRestoreArrayRead(K, &k));
+  PetscCall(VecRestoreArrayRead(L, &l));
+  PetscCall(VecDestroy(&K));
+  PetscCall(VecDestroy(&L));
+  PetscCall(PDModelCountDamage(m));
+  PetscFunctionReturn(0);
+}
+
+/* Curve rows: every rank holds all of them; the file holds them once. */
+static PetscErrorCode WriteRows(MPI_Comm comm, const PDRecord *rec, PetscViewer v) {
+  Vec          R;
+  PetscScalar *a;
+  PetscInt     lo, hi;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, rec->nrows) * ROW_FIELDS, &R));
+  PetscCall(PetscObjectSetName((PetscObject)R, "curve"));
+  PetscCall(VecGetOwnershipRange(R, &lo, &hi));
+  PetscCall(VecGetArray(R, &a));
+  for (PetscInt r = 0; r < rec->nrows; r++) {
+    PetscScalar row[ROW_FIELDS];
+    RowPack(&rec->rows[r], row);
+    for (PetscInt k = 0; k < ROW_FIELDS; k++) {
+      const PetscInt i = r * ROW_FIELDS + k;
+      if (i >= lo && i < hi) a[i - lo] = row[k];
+    }
+  }
+  PetscCall(VecRestoreArray(R, &a));
+  PetscCall(VecView(R, v));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscViewer v) {
+  Vec                R, all;
+  VecScatter         toall;
+  const PetscScalar *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, nrows) * ROW_FIELDS, &R));
+  PetscCall(PetscObjectSetName((PetscObject)R, "curve"));
+  PetscCall(VecLoad(R, v));
+  PetscCall(VecScatterCreateToAll(R, &toall, &all));
+  PetscCall(VecScatterBegin(toall, R, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toall, R, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArrayRead(all, &a));
+  rec->nrows = 0;
+  for (PetscInt r = 0; r < nrows; r++) {
+    PDCurveRow row;
+    RowUnpack(a + r * ROW_FIELDS, &row);
+    PetscCall(PDRecordAddRow(rec, &row));
+  }
+  PetscCall(VecRestoreArrayRead(all, &a));
+  PetscCall(VecScatterDestroy(&toall));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+/* Run totals kept with the rows; the driver's own scalars follow them as attributes of the root group. */
+static PetscErrorCode Totals(PDModel *m, PDRecord *rec, PetscViewer v, PetscBool write) {
+  PetscInt                *t[]    = {&rec->steps, &rec->newton_its, &rec->ksp_its, &rec->max_events_per_its, &m->jacobian_assemblies};
+  static const char *const name[] = {"steps", "newton_its", "ksp_its", "max_events_per_iteration", "jacobian_assemblies"};
+
+  PetscFunctionBeginUser;
+  for (size_t k = 0; k < sizeof t / sizeof t[0]; k++) {
+    if (write)
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", name[k], PETSC_INT, t[k]));
+    else
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name[k], PETSC_INT, NULL, t[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const Vec vec[], const char *const vec_name[], PetscInt nreal,
+                                 const char *const real_name[], const PetscReal real[]) {
+  MPI_Comm       comm = m->lat->comm;
+  PetscViewer    v;
+  char           path[PETSC_MAX_PATH_LEN];
+  PetscReal      fp[NFINGERPRINT];
+  const PetscInt mark = 1, nrows = rec->nrows;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t0));
+  PetscCall(Fingerprint(m, fp));
+  PetscCall(PetscSNPrintf(path, sizeof path, "%s/checkpoint.h5.tmp", rec->dir));
+  PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pdimplicit_checkpoint", PETSC_INT, &mark));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "scene", PETSC_STRING, m->scene->name));
+  for (PetscInt k = 0; k < NFINGERPRINT; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", fingerprint_names[k], PETSC_REAL, &fp[k]));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "curve_rows", PETSC_INT, &nrows));
+  PetscCall(Totals(m, rec, v, PETSC_TRUE));
+  for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", real_name[k], PETSC_REAL, &real[k]));
+  PetscCall(WriteRows(comm, rec, v));
+  if (m->softening) PetscCall(WriteHistory(m, v));
+  for (PetscInt k = 0; k < nvec; k++) {
+    PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
+    PetscCall(VecView(vec[k], v));
+  }
+  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(PDFileCommit(comm, rec->dir, "checkpoint.h5"));
+  PetscCall(PetscTime(&t1));
+  rec->t_output += t1 - t0;
+  PetscFunctionReturn(0);
+}
+
+/* Reads what PDCheckpointWrite wrote (the file was validated before the run started). The rows' wall
+   clock goes on from the last one. */
+PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, PetscInt nvec, Vec vec[], const char *const vec_name[],
+                                PetscInt nreal, const char *const real_name[], PetscReal real[]) {
+  MPI_Comm    comm = m->lat->comm;
+  PetscViewer v;
+  PetscInt    nrows;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_READ, &v));
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "curve_rows", PETSC_INT, NULL, &nrows));
+  PetscCall(Totals(m, rec, v, PETSC_FALSE));
+  for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, NULL, &real[k]));
+  PetscCall(ReadRows(comm, rec, nrows, v));
+  if (m->softening) PetscCall(ReadHistory(m, v));
+  for (PetscInt k = 0; k < nvec; k++) {
+    PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
+    PetscCall(VecLoad(vec[k], v));
+  }
+  PetscCall(PetscViewerDestroy(&v));
+  if (rec->nrows) rec->t_start -= rec->rows[rec->nrows - 1].wall;
+  PetscCall(PetscStrncpy(rec->restart_from, path, sizeof rec->restart_from));
+  rec->restart_step = rec->steps;
+  PetscFunctionReturn(0);
+}
