@@ -38,8 +38,8 @@ CASES = [
 
 def checkpoint_cases():
     """Restarts that must be refused: a missing file, a file that is not HDF5, a checkpoint of another scene
-    (the same beam at another spacing, or with another tensile strength), and a restart outside path
-    following."""
+    (the same beam at another spacing, with another tensile strength, or with another constraint), and a
+    restart outside path following."""
     good = run("gregoire_d200_hn_2d", "-pd_dx", "0.01", "-pd_control", "arclength", "-pd_stop_fraction", "0.9",
                "-pd_checkpoint_every", "5")
     ck = os.path.join(good.dir, "checkpoint.h5")
@@ -49,6 +49,7 @@ def checkpoint_cases():
             ("gregoire_d200_hn_2d", arc + ["-pd_restart", os.path.join(good.dir, "curve.csv")], "-pd_restart"),
             ("gregoire_d200_hn_2d", arc + ["-pd_restart", ck], "-pd_restart"),  # dx 5 mm against the checkpoint's 10 mm
             ("gregoire_d200_hn_2d", arc + ["-pd_dx", "0.01", "-pd_ft", "3e6", "-pd_restart", ck], "-pd_restart"),  # other strength
+            ("gregoire_d200_hn_2d", arc + ["-pd_dx", "0.01", "-pd_arclength_type", "dissipation", "-pd_restart", ck], "-pd_restart"),
             ("gregoire_d200_hn_2d", ["-pd_dx", "0.01", "-pd_restart", ck], "-pd_restart"),  # displacement control
             ("gregoire_d200_hn_2d", arc + ["-pd_checkpoint_every", "-1"], "-pd_checkpoint_every")]
 

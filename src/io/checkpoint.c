@@ -10,8 +10,9 @@
    - the curve rows and run totals, so curve.csv and summary.json cover the whole path;
    - the driver's scalars as named attributes;
    - a fingerprint of the scene: node, bond and dof counts and two sums over the bonds (stiffness
-     coefficients and critical stretches). A changed geometry, modulus, strength, fracture energy, horizon
-     or correction changes one of them, and the restart is refused before any output is written.
+     coefficients and critical stretches), and the path-following constraint. A changed geometry, modulus,
+     strength, fracture energy, horizon, correction or constraint changes one of them, and the restart is
+     refused before any output is written.
    The file is written under a temporary name and renamed once complete. */
 #include "pd_io.h"
 #include <petscviewerhdf5.h>
@@ -47,7 +48,7 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
    an HDF5 call), carry the checkpoint mark and match this scene's fingerprint. */
 PetscErrorCode PDCheckpointValidate(const PDModel *m, const char *path) {
   MPI_Comm    comm = m->lat->comm;
-  PetscBool   exists, mark;
+  PetscBool   exists, mark, same;
   PetscMPIInt rank;
   int         hdf5 = 0;
   PetscViewer v;
@@ -70,6 +71,17 @@ PetscErrorCode PDCheckpointValidate(const PDModel *m, const char *path) {
   PetscCall(PetscViewerHDF5HasAttribute(v, "/", "pdimplicit_checkpoint", &mark));
   if (!mark) PetscCall(PetscViewerDestroy(&v));
   PetscCheck(mark, comm, PETSC_ERR_FILE_READ, "Option -pd_restart: '%s' is not a pdimplicit checkpoint", path);
+  PetscCall(PetscViewerHDF5HasAttribute(v, "/", "arclength_type", &same)); /* older checkpoints lack it */
+  if (same) {
+    /* the arc length is measured in the constraint's units (m, or J for dissipation): it cannot change */
+    char *type;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "arclength_type", PETSC_STRING, NULL, &type));
+    PetscCall(PetscStrcmp(type, PDArcTypes[m->scene->arc_type], &same));
+    if (!same) PetscCall(PetscViewerDestroy(&v));
+    PetscCheck(same, comm, PETSC_ERR_USER_INPUT, "Option -pd_restart: '%s' followed the path with -pd_arclength_type %s, not %s", path,
+               type, PDArcTypes[m->scene->arc_type]);
+    PetscCall(PetscFree(type));
+  }
   PetscCall(Fingerprint(m, fp));
   for (PetscInt k = 0; k < NFINGERPRINT; k++) {
     PetscReal tol;
@@ -261,6 +273,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "pdimplicit_checkpoint", PETSC_INT, &mark));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "scene", PETSC_STRING, m->scene->name));
+  PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "arclength_type", PETSC_STRING, PDArcTypes[m->scene->arc_type]));
   for (PetscInt k = 0; k < NFINGERPRINT; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", fingerprint_names[k], PETSC_REAL, &fp[k]));
   PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "curve_rows", PETSC_INT, &nrows));
   PetscCall(Totals(m, rec, v, PETSC_TRUE));
