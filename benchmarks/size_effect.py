@@ -54,6 +54,11 @@ def scene_args(D, kind, dx):
     the generated unnotched scenes carry."""
     args = ["-options_file", os.path.join(ROOT, "options", "gregoire_d%d_%s.opts" % (D, kind)), "-pd_dx", str(dx), "-pd_control",
             "arclength", "-pd_stop_fraction", "0.1"]
+    if D >= 200:
+        # where damage localises in the large beams Newton cycles across bond kinks; cutting such steps early
+        # and not growing the arc length right after a cut took the D = 200 mm half-notched beam past its
+        # peak, where the defaults crept along (docs/arclength.md, "Where this is not enough")
+        args += ["-pd_arclength_halved_its", "8", "-pd_arclength_hold", "2"]
     if D == 50:
         # the path may run past the scene's load factor 1; the first step (lambda_max / steps) stays the scene's
         args += ["-pd_stop_cmod", "0", "-pd_lambda_max", "4", "-pd_steps", "800"]

@@ -96,6 +96,8 @@ typedef struct {
   PetscReal  arc_growth;     /* largest arc length over the first one */
   PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
   PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
+  PetscInt   arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
+  PetscInt   arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
   PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
   PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */

@@ -295,15 +295,17 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
    clock goes on from the last one. */
 PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, PetscInt nvec, Vec vec[], const char *const vec_name[],
                                 PetscInt nreal, const char *const real_name[], PetscReal real[]) {
-  MPI_Comm    comm = m->lat->comm;
-  PetscViewer v;
-  PetscInt    nrows;
+  MPI_Comm        comm = m->lat->comm;
+  PetscViewer     v;
+  PetscInt        nrows;
+  const PetscReal zero = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_READ, &v));
   PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "curve_rows", PETSC_INT, NULL, &nrows));
   PetscCall(Totals(m, rec, v, PETSC_FALSE));
-  for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, NULL, &real[k]));
+  /* a scalar the file lacks (written before the driver kept it) reads as 0 */
+  for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &real[k]));
   PetscCall(ReadRows(comm, rec, nrows, v));
   if (m->softening) PetscCall(ReadHistory(m, v));
   for (PetscInt k = 0; k < nvec; k++) {

@@ -526,6 +526,16 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                        &sc->arc_rtol, NULL));
       PetscCheck(sc->arc_rtol > 0 && sc->arc_rtol < 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_rtol: must lie in (0, 1), got %g",
                  (double)sc->arc_rtol);
+      PetscCall(PDOptionInt(PetscOptionsObject, "-pd_arclength_halved_its",
+                            "Path following: halved Newton updates (after Newton cycles on frozen branches) allowed before the step is "
+                            "cut; 0: the whole budget",
+                            &sc->arc_halved_its, NULL));
+      PetscCheck(sc->arc_halved_its >= 0, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_arclength_halved_its: must be non-negative, got %" PetscInt_FMT, sc->arc_halved_its);
+      PetscCall(PDOptionInt(PetscOptionsObject, "-pd_arclength_hold",
+                            "Path following: accepted steps after a cut during which the arc length does not grow", &sc->arc_hold, NULL));
+      PetscCheck(sc->arc_hold >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_hold: must be non-negative, got %" PetscInt_FMT,
+                 sc->arc_hold);
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
                              "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
                              &sc->arc_initial, NULL));

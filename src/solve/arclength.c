@@ -26,7 +26,7 @@ typedef struct {
   PetscReal gauge_turn; /* CMOD (else load-point displacement) where the path turned */
 } Reversal;
 
-#define NSTATE 14 /* scalars a checkpoint keeps of the driver (state_names below) */
+#define NSTATE 15 /* scalars a checkpoint keeps of the driver (state_names below) */
 
 typedef struct {
   PDModel       *m;
@@ -50,6 +50,7 @@ typedef struct {
   PetscInt  type;            /* constraint, or ARC_LOAD: plain control (the first step, and under auto until softening) */
   PetscReal dl, dl0, dlam;   /* arc length, the first one, load-factor increment under plain control */
   PetscReal peak, peak_sign; /* largest |load| so far and its sign */
+  PetscInt  hold;            /* accepted steps left during which the arc length may not grow (-pd_arclength_hold) */
   PetscReal state[NSTATE];   /* the scalars above at the last accepted step, as a checkpoint keeps them */
 } Arc;
 
@@ -233,7 +234,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   a->lam += dlam;
   /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
      soften together takes many grants, each a small perturbation Newton absorbs in a few iterations */
-  for (PetscInt k = 0, stages = 0, rises = 0, flips = 0; k < maxit; k++) {
+  for (PetscInt k = 0, stages = 0, rises = 0, flips = 0, damped = 0; k < maxit; k++) {
     PetscInt           n, ncand, granted;
     KSPConvergedReason kr;
     PetscReal          tol, rprev = rnorm;
@@ -290,11 +291,16 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
       }
       a->why = "more than 100,000 limiter stages";
       if (++stages > 100000) PetscFunctionReturn(0);
-      k     = 0; /* a new stage: full Newton steps again */
-      rises = 0;
-      damp  = 1;
+      k      = 0; /* a new stage: full Newton steps again */
+      rises  = 0;
+      damp   = 1;
+      damped = 0;
       PetscCall(Residual(a, &rnorm, &fnorm));
     }
+    /* -pd_arclength_halved_its: halved updates that have not settled by then are taken to cycle, and the
+       step is cut rather than left to spend its budget (docs/arclength.md, "Where this is not enough") */
+    a->why = "Newton cycles with halved updates";
+    if (damp < 1 && m->scene->arc_halved_its > 0 && ++damped > m->scene->arc_halved_its) PetscFunctionReturn(0);
     /* plain control (dlambda = 0) and the augmented solve need no direction */
     PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug));
     PetscCall(VecScale(a->R, -1));
@@ -379,8 +385,8 @@ static PetscErrorCode LoadReversal(Arc *a, const PDRecord *rec, const PDCurveRow
    the checkpoint had a lagged one; both solve to the same tolerance, and the restarted path retraces the
    other to round-off (measured 6e-12 of the peak load on the 2D half-notched beam). */
 static const char *const state_names[] = {
-    "step", "lambda",    "external_work",  "control",       "arc_length", "arc_length_first", "load_increment",
-    "peak", "peak_sign", "spherical_psi2", "have_previous", "turn",       "reversal_phase",   "reversal_gauge"};
+    "step",      "lambda",         "external_work", "control", "arc_length",     "arc_length_first", "load_increment", "peak",
+    "peak_sign", "spherical_psi2", "have_previous", "turn",    "reversal_phase", "reversal_gauge",   "arc_length_hold"};
 _Static_assert(sizeof state_names / sizeof state_names[0] == NSTATE, "one name per checkpointed scalar");
 static const char *const state_vec_names[] = {"displacement", "internal_force", "last_step"};
 
@@ -398,7 +404,8 @@ static void PackState(Arc *a, const PDPath *p) {
                                (PetscReal)a->have_prev,
                                (PetscReal)a->turn,
                                (PetscReal)a->rev.phase,
-                               a->rev.gauge_turn};
+                               a->rev.gauge_turn,
+                               (PetscReal)a->hold};
   PetscArraycpy(a->state, v, NSTATE);
 }
 
@@ -418,6 +425,7 @@ static void UnpackState(Arc *a, PDPath *p) {
   a->turn            = v[11] != 0 ? PETSC_TRUE : PETSC_FALSE;
   a->rev.phase       = (PetscInt)v[12];
   a->rev.gauge_turn  = v[13];
+  a->hold            = (PetscInt)v[14];
 }
 
 static PetscErrorCode WriteCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
@@ -504,8 +512,10 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       }
       if (a.type == ARC_LOAD)
         a.dlam *= 0.5;
-      else
+      else {
         a.dl *= 0.5;
+        a.hold = sc->arc_hold;
+      }
       continue;
     }
     if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
@@ -527,7 +537,12 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       PetscCall(
           PetscInfo(NULL, "path following (%s) from step %" PetscInt_FMT ", arc length %g\n", PDArcTypes[a.type], path.step, (double)a.dl));
     } else if (a.type != ARC_LOAD) { /* aim at arc_target_its Newton iterations, within [dl0 / 1000, growth dl0] */
-      const PetscReal f = PetscSqrtReal((PetscReal)sc->arc_target_its / PetscMax(1, a.its)), cap = sc->arc_growth;
+      const PetscReal cap = sc->arc_growth;
+      PetscReal       f   = PetscSqrtReal((PetscReal)sc->arc_target_its / PetscMax(1, a.its));
+      if (a.hold > 0) { /* after a cut: no growth for -pd_arclength_hold steps */
+        f = PetscMin(f, 1);
+        a.hold--;
+      }
       a.dl = PetscMax(1e-3 * a.dl0, PetscMin(cap * a.dl0, a.dl * PetscMax(0.5, PetscMin(2, f))));
     } else if (a.its <= 3)
       a.dlam = PetscMin(2 * a.dlam, sc->dlambda_max);
