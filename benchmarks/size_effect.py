@@ -56,7 +56,7 @@ def scene_args(D, kind, dx):
             "arclength", "-pd_stop_fraction", "0.1"]
     if D >= 200:
         # where damage localises in the large beams Newton cycles across bond kinks; cutting such steps early
-        # and not growing the arc length right after a cut took the D = 200 mm half-notched beam past its
+        # and not growing the arc length right after a cut took the D = 200 mm half-notched beam over its
         # peak, where the defaults crept along (docs/arclength.md, "Where this is not enough")
         args += ["-pd_arclength_halved_its", "8", "-pd_arclength_hold", "2"]
     if D == 50:
