@@ -254,15 +254,16 @@ def interrupt():
     retraces("after SIGTERM", full, on, s["steps"])
 
 
-def retraces(name, full, on, step):
+def retraces(name, full, on, step, its_slack=0):
     """A run that went on from a checkpoint at `step` against the uninterrupted one: the same steps and
     Newton iterations, every row within 1e-9 of the largest value. The restart builds its preconditioner
     afresh where the other run had a lagged one; both solve to 1e-8, and the paths agree to round-off
-    (measured 6e-12). A lost piece of state (bond history, arc length, peak) shows up far above 1e-9."""
+    (measured 6e-12). A lost piece of state (bond history, arc length, peak) shows up far above 1e-9.
+    its_slack: Newton iterations the restart may differ by, where a residual lands on the tolerance."""
     s, f = on.summary, full.summary
     check(s["status"] == f["status"] and s["converged"], "%s: %s" % (name, s["status"]))
     check(s["restart"]["step"] == step, "%s: went on from step %d" % (name, s["restart"]["step"]))
-    check(s["steps"] == f["steps"] and s["newton_its"] == f["newton_its"],
+    check(s["steps"] == f["steps"] and abs(s["newton_its"] - f["newton_its"]) <= its_slack,
           "%s: %d steps and %d Newton iterations (uninterrupted: %d, %d)" % (name, s["steps"], s["newton_its"], f["steps"], f["newton_its"]))
     a, b = full.curve, on.curve
     worst = max(max(abs(x[k] - y[k]) / max(abs(z[k]) for z in a) for k in ("load_N", "cmod_m", "external_J", "dissipated_J"))
@@ -282,6 +283,15 @@ def restart():
     ck = os.path.join(half.dir, "checkpoint.h5")
     retraces("1 rank", full, run(HN2D, *opts, "-pd_restart", ck), half.summary["steps"])
     retraces("2 ranks", full, run(HN2D, *opts, "-pd_restart", ck, ranks=2), half.summary["steps"])
+    # the dissipation constraint's predictor needs the internal force of the last state, which a restart
+    # reads from the checkpoint (before that was mended, the restarted path turned back and unloaded). Its
+    # 493 steps take 806 Newton iterations; at step 479 of the restart a residual 1.6e-12 apart lands on the
+    # other side of the tolerance and costs one more (measured: 808 in all), so two are allowed
+    dopts = opts + ["-pd_arclength_type", "dissipation"]
+    full = run(HN2D, *dopts)
+    half = run(HN2D, *dopts, "-pd_checkpoint_every", "10", "-pd_stop_fraction", "0.5")
+    retraces("dissipation", full, run(HN2D, *dopts, "-pd_restart", os.path.join(half.dir, "checkpoint.h5")), half.summary["steps"],
+              its_slack=2)
 
 
 if __name__ == "__main__":

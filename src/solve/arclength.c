@@ -153,8 +153,10 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
     /* g = (f_n.u - f_int(u).u_n)/2 - dl, linearised with d(f_int.u_n) = (K u_n).du */
     PetscScalar fu, fi, wd, wv;
     PetscReal   g;
+    /* at the predictor u = u_n, whose internal force is f_n: a->fint may hold a failed attempt's last
+       iterate, or nothing after a restart */
     PetscCall(VecDot(p->f_n, a->u, &fu));
-    PetscCall(VecDot(a->fint, p->u_n, &fi));
+    PetscCall(VecDot(predictor ? p->f_n : a->fint, p->u_n, &fi));
     g = 0.5 * PetscRealPart(fu - fi) - dl;
     PetscCall(PDModelTangentApply(m, a->u, p->u_n, a->q));
     PetscCall(VecAYPX(a->q, -1, p->f_n)); /* f_n - K u_n */
