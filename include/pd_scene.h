@@ -88,7 +88,6 @@ typedef struct {
   PetscBool    sc_correction;    /* per-bond critical stretch from lambda_ij c */
   PetscBool    gf_lattice;       /* critical stretches from the lattice's own crack-plane bond sum, not the continuum */
   PetscReal    strength_scatter; /* per-bond tensile strength f_t (1 + r xi), xi uniform in [-1, 1] by bond id; 0: none */
-  PetscReal    contact_band;     /* damaged bonds: C1 blend of tension secant and compression stiffness over |s| < band s0; 0: kink */
   PDControl    control;
   /* path following (-pd_control arclength|auto) */
   PDArcType  arc_type;       /* constraint */
@@ -99,7 +98,7 @@ typedef struct {
   PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
   PetscInt   arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
   PetscInt   arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
-  PetscBool  arc_linesearch; /* where Newton cycles: backtracking line search instead of halved updates */
+  PetscReal  arc_kink_rtol;  /* frozen branches that keep flipping: real-law residual accepted below this fraction of |f_int| */
   PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
   PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */

@@ -3,8 +3,7 @@
    is set below the current stretch so that softening bonds are loading (the consistent tangent is then
    the derivative of the residual), and every bond may soften. Run for each law, small and finite
    kinematics and the modified stretch. The check is the one -snes_test_jacobian makes, on a state that
-   SNES would only reach after many steps. With -pd_contact_band the bonds below s0 are given a damaged
-   history instead (kappa = 2 s0), so that those near zero stretch lie in the band. */
+   SNES would only reach after many steps. */
 #include "pd_model.h"
 #include "../src/model/kernel.h"
 #include "check.h"
@@ -12,8 +11,6 @@
 static const char *base = "-pd_domain 0,0,0,0.04,0.025,0.02 -pd_dx 0.005 -pd_E 37e9 -pd_ft 3.9e6 -pd_Gf 143.2 "
                           "-pd_region0_box 0,0,0,0,0.025,0.02 -pd_region0_kind support -pd_region0_dofs x,y,z "
                           "-pd_region1_box 0.04,0,0,0.04,0.025,0.02 -pd_region1_kind force -pd_region1_force 1,0,0 -pd_mat_type aij";
-
-static PetscInt in_band; /* bonds in the contact band in the last case */
 
 static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
   PDScene     sc;
@@ -58,12 +55,9 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
     PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
     PetscCall(PDModelStretches(&m, ul, s));
     PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
-    in_band = 0;
     for (PetscInt e = 0; e < bd.nbonds; e++) {
-      const PetscReal s0 = m.thr ? m.thr[e].s0 : m.law[bd.material[e]].nominal.s0;
-      m.kappa[e]         = sc.contact_band > 0 && s[e] < s0 ? 2 * s0 : PetscMax(0, 0.5 * s[e]);
-      m.level[e]         = PD_BOND_SOFTENING;
-      if (sc.contact_band > 0 && PetscAbsReal(s[e]) < sc.contact_band * s0) in_band++;
+      m.kappa[e] = PetscMax(0, 0.5 * s[e]);
+      m.level[e] = PD_BOND_SOFTENING;
     }
     PetscCall(PetscFree(s));
   }
@@ -111,14 +105,6 @@ int main(int argc, char **argv) {
     PetscCall(RunCase(cases[k], &err));
     PetscCall(PetscSNPrintf(what, sizeof what, "|Jv - FD|/|Jv| < 1e-6: %s", cases[k]));
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, what, err, 1e-6);
-  }
-  {
-    /* the C1 passage from the damaged secant to full stiffness in compression: its slope, and that the
-       random state puts bonds in the band at all */
-    PetscReal err;
-    PetscCall(RunCase("-pd_law nonlinear -pd_contact_band 0.5", &err));
-    Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "|Jv - FD|/|Jv| < 1e-6: -pd_law nonlinear -pd_contact_band 0.5", err, 1e-6);
-    Check(in_band > 100 ? PETSC_TRUE : PETSC_FALSE, "more than 100 damaged bonds inside the contact band", (PetscReal)in_band, 100);
   }
   {
     /* the check can fail: the secant is not the derivative of a softening residual */

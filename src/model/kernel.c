@@ -53,74 +53,44 @@ static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDL
   return kap >= *cap ? *cap * (1 - 1e-12) : kap;
 }
 
-/* A damaged bond passes from its secant c (1 - d) in tension to c in compression (cracks do not
-   interpenetrate): a kink at zero stretch. With -pd_contact_band b > 0 the passage is C1 over |s| < eps,
-   eps = b s0: the slope falls linearly from c at -eps to c (1 - d) at +eps, so g = c s - c d (s + eps)^2 /
-   (4 eps) in the band; outside it the law is unchanged. Where localisation leaves hundreds of damaged bonds
-   near zero stretch, Newton otherwise cycles across their kinks (docs/arclength.md). */
-static inline PetscBool InContactBand(const PDModel *m, const PDLawBond *t, PetscReal d, PetscReal s, PetscReal *eps) {
-  *eps = m->scene->contact_band * t->s0;
-  return d > 0 && *eps > 0 && PetscAbsReal(s) < *eps ? PETSC_TRUE : PETSC_FALSE;
-}
-
-/* Stored energy per unit c |xi| of a bond with damage d at stretch s: (1 - d) s^2 / 2 in tension, s^2 / 2 in
-   compression, and the integral of the band's force across it (the offsets d eps^2 / 12 keep it continuous). */
-static inline PetscReal StoredEnergy(PetscReal d, PetscReal s, PetscReal eps) {
-  if (d == 0) return 0.5 * s * s;
-  if (s >= eps) return 0.5 * (1 - d) * s * s - d * eps * eps / 12;
-  if (s <= -eps) return 0.5 * s * s + d * eps * eps / 12;
-  return 0.5 * s * s - d * ((s + eps) * (s + eps) * (s + eps) - eps * eps * eps) / (12 * eps);
-}
-
 /* Scalar bond force g(s) and its slope. History kappa_n and the level the limiter allows give the
    effective largest stretch; a bond held below a threshold stays on its current branch. Compression is
-   linear elastic whatever the damage, but for the optional contact band above. */
+   linear elastic whatever the damage (cracks do not interpenetrate). */
 static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
-  const PetscReal  c = m->bonds->coef[e];
-  const PDLaw     *law;
-  const PDLawBond *t;
-  PetscReal        kap, cap, d, dd, eps;
-  PetscBool        loading;
+  const PetscReal c = m->bonds->coef[e];
+  const PDLaw    *law;
+  PetscReal       kap, cap, d, dd;
 
-  law = m->softening ? &m->law[m->bonds->material[e]] : NULL;
-  if (!law || law->kind == PD_LAW_ELASTIC || (s < 0 && m->scene->contact_band == 0)) {
+  if (!m->softening || s < 0) {
     *g  = c * s;
     *gp = c;
     return;
   }
-  t = Thresholds(m, e, law);
-  if (s < 0) { /* compression inside the band: the damage of the history; beyond it linear */
-    d = PDLawDamage(law, t, m->kappa[e], &dd);
-    if (InContactBand(m, t, d, s, &eps)) {
-      *g  = c * s - c * d * (s + eps) * (s + eps) / (4 * eps);
-      *gp = c - c * d * (s + eps) / (2 * eps);
-    } else {
-      *g  = c * s;
-      *gp = c;
+  law = &m->law[m->bonds->material[e]];
+  if (law->kind == PD_LAW_ELASTIC) {
+    *g  = c * s;
+    *gp = c;
+    return;
+  }
+  {
+    const PDLawBond *t       = Thresholds(m, e, law);
+    PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
+    kap                      = EffectiveHistory(m, e, law, t, s, &cap);
+    if (m->branch && m->branch[e] == PD_BRANCH_SECANT) {
+      kap     = m->kappa[e];
+      loading = PETSC_FALSE;
+    } else if (m->branch && m->branch[e] == PD_BRANCH_ENVELOPE) {
+      kap     = s >= cap ? cap * (1 - 1e-12) : s;
+      loading = PETSC_TRUE;
     }
-    return;
+    d  = PDLawDamage(law, t, kap, &dd);
+    *g = c * (1 - d) * s;
+    /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
+    if (m->scene->tangent == PD_TANGENT_CONSISTENT && loading && s < cap)
+      *gp = c * ((1 - d) - s * dd);
+    else
+      *gp = c * (1 - d);
   }
-  loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
-  kap     = EffectiveHistory(m, e, law, t, s, &cap);
-  if (m->branch && m->branch[e] == PD_BRANCH_SECANT) {
-    kap     = m->kappa[e];
-    loading = PETSC_FALSE;
-  } else if (m->branch && m->branch[e] == PD_BRANCH_ENVELOPE) {
-    kap     = s >= cap ? cap * (1 - 1e-12) : s;
-    loading = PETSC_TRUE;
-  }
-  d = PDLawDamage(law, t, kap, &dd);
-  if (!loading && InContactBand(m, t, d, s, &eps)) {
-    *g  = c * s - c * d * (s + eps) * (s + eps) / (4 * eps);
-    *gp = c - c * d * (s + eps) / (2 * eps);
-    return;
-  }
-  *g = c * (1 - d) * s;
-  /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
-  if (m->scene->tangent == PD_TANGENT_CONSISTENT && loading && s < cap)
-    *gp = c * ((1 - d) - s * dd);
-  else
-    *gp = c * (1 - d);
 }
 
 PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, PetscScalar *f) {
@@ -145,8 +115,8 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   PetscFunctionReturn(0);
 }
 
-/* Energy of the bonds this rank counts: stored c |xi| E(d, s) (StoredEnergy: (1 - d) s^2 / 2 in tension,
-   s^2 / 2 in compression) and dissipated c |xi| (W(kappa) - E(d, kappa)), W the law's envelope work. The |xi| turns the
+/* Energy of the bonds this rank counts: stored c (1 - d) s^2 |xi| / 2 (c s^2 |xi| / 2 in compression) and
+   dissipated c |xi| (W(kappa) - (1 - d) kappa^2 / 2), W the law's envelope work. The |xi| turns the
    stretch integral into work for the standard stretch (ds = e.deta / |xi|); with the modified stretch
    it is the small-strain value. */
 PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated) {
@@ -168,9 +138,8 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
       const PDLaw     *law = &m->law[bd->material[e]];
       const PDLawBond *t   = Thresholds(m, e, law);
       PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(s, 0), &cap), d = PDLawDamage(law, t, kap, &dd);
-      const PetscReal  eps = m->scene->contact_band * t->s0;
-      es += c * L0 * StoredEnergy(d, s, eps);
-      ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - StoredEnergy(d, kap, eps));
+      es += 0.5 * c * (s < 0 ? 1 : 1 - d) * s * s * L0;
+      ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
     }
   }
   *stored     = es;

@@ -419,13 +419,6 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                          &sc->strength_scatter, NULL));
   PetscCheck(sc->strength_scatter >= 0 && sc->strength_scatter < 1, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_strength_scatter: must lie in [0, 1), got %g", (double)sc->strength_scatter);
-  PetscCall(
-      PDOptionReal(PetscOptionsObject, "-pd_contact_band",
-                   "Damaged bonds: width, as a fraction of the elastic limit s0, of a smooth (C1) passage from the secant stiffness in "
-                   "tension to the full stiffness in compression; 0: the kink at zero stretch of the bond law",
-                   &sc->contact_band, NULL));
-  PetscCheck(sc->contact_band >= 0 && sc->contact_band < 1, comm, PETSC_ERR_USER_INPUT,
-             "Option -pd_contact_band: must lie in [0, 1), got %g", (double)sc->contact_band);
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction",
                          "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)", &sc->sc_correction, NULL));
   PetscCall(
@@ -543,11 +536,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                             "Path following: accepted steps after a cut during which the arc length does not grow", &sc->arc_hold, NULL));
       PetscCheck(sc->arc_hold >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_hold: must be non-negative, got %" PetscInt_FMT,
                  sc->arc_hold);
-      PetscCall(
-          PDOptionBool(PetscOptionsObject, "-pd_arclength_linesearch",
-                       "Path following: where Newton cycles on frozen branches, backtrack along each update (alpha = 1, 1/2, ..., 1/16) "
-                       "instead of halving every update",
-                       &sc->arc_linesearch, NULL));
+      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_kink_rtol",
+                             "Path following: when bonds keep swapping between secant and envelope at their kink, accept the frozen "
+                             "equilibrium once the real law's residual is below this fraction of |f_int| (0: never)",
+                             &sc->arc_kink_rtol, NULL));
+      PetscCheck(sc->arc_kink_rtol >= 0 && sc->arc_kink_rtol < 1, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_arclength_kink_rtol: must lie in [0, 1), got %g", (double)sc->arc_kink_rtol);
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
                              "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
                              &sc->arc_initial, NULL));

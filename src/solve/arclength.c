@@ -32,7 +32,7 @@ typedef struct {
   PDModel       *m;
   Mat            J;
   KSP            ksp;
-  Vec            u, fint, R, q, duI, v, w, dprev, row, ubase;
+  Vec            u, fint, R, q, duI, v, w, dprev, row;
   PDAugmented    aug; /* used for linear constraints unless -pd_arclength_solve bordering */
   PetscBool      augmented;
   PetscReal      lam;
@@ -212,37 +212,6 @@ static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscRea
   PetscFunctionReturn(0);
 }
 
-/* Backtracking along the Newton update (du, dlambda) from u, lambda: the first of alpha = 1, 1/2, ...,
-   1/16 that lowers |G| (sufficient decrease), else the one with the smallest |G|. The update solves
-   K du + dG/dlambda dlambda = -G, so it is a descent direction of |G|^2 on the branches of the current
-   tangent; where a fixed halving converges at best by 1/2 per iteration, full steps come back as soon as
-   they reduce the residual (-pd_arclength_linesearch). */
-static PetscErrorCode LineSearch(Arc *a, PetscBool aug, PetscReal dlam, PetscReal r0, PetscReal *alpha) {
-  const Vec       dir  = aug ? a->m->u_ref : a->v;
-  const PetscReal lam0 = a->lam;
-  PetscReal       best = PETSC_MAX_REAL, r, f;
-
-  PetscFunctionBeginUser;
-  *alpha = 1;
-  PetscCall(VecCopy(a->u, a->ubase));
-  for (PetscReal al = 1; al >= 1.0 / 16; al *= 0.5) {
-    PetscCall(VecWAXPY(a->u, al, a->duI, a->ubase));
-    PetscCall(VecAXPY(a->u, al * dlam, dir));
-    a->lam = lam0 + al * dlam;
-    PetscCall(Residual(a, &r, &f));
-    if (r < best) {
-      best   = r;
-      *alpha = al;
-    }
-    if (r < (1 - 1e-4 * al) * r0) break;
-  }
-  PetscCall(PetscInfo(NULL, "arclength line search: alpha %g, |R| %g from %g\n", (double)*alpha, (double)best, (double)r0));
-  PetscCall(VecWAXPY(a->u, *alpha, a->duI, a->ubase));
-  PetscCall(VecAXPY(a->u, *alpha * dlam, dir));
-  a->lam = lam0 + *alpha * dlam;
-  PetscFunctionReturn(0);
-}
-
 /* One step of length dl: predictor along v, then bordered Newton corrections until equilibrium holds,
    the constraint is met and the limiter has no event left. */
 static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscInt *max_events, PetscBool *ok) {
@@ -286,8 +255,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
         rises = 0;
       } else {
         damp = 0.5;
-        PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: updates %s for the rest of the step\n", (double)rnorm,
-                            m->scene->arc_linesearch ? "searched" : "halved"));
+        PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: updates halved for the rest of the step\n", (double)rnorm));
       }
     }
     a->why = "residual not finite";
@@ -302,6 +270,14 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
       PetscReal rfree;
       m->branch = NULL;
       PetscCall(Residual(a, &rfree, &fnorm));
+      /* -pd_arclength_kink_rtol: once the flips repeat, a few bonds whose equilibrium lies at their kink
+         (on the secant it puts them past their history, on the envelope below it) swap branch for ever; the
+         frozen equilibrium is accepted when the real law's residual is below the looser tolerance (the bonds
+         keep their secant force for this step, and their history takes the stretch they reached) */
+      if (rfree > tol && flips >= 2 && rfree <= m->scene->arc_kink_rtol * fnorm) {
+        PetscCall(PetscInfo(NULL, "arclength: frozen equilibrium accepted at a kink, real law |R| %g\n", (double)rfree));
+        rfree = 0;
+      }
       if (rfree > tol) {
         m->branch = a->branch;
         PetscCall(PDModelFlipBranches(m, a->u, &nflipped));
@@ -353,14 +329,9 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     a->why = "the constraint has no real root";
     if (!fine) PetscFunctionReturn(0);
     /* bordering's v carries u_ref; the augmented du is on free dofs only */
-    if (damp < 1 && m->scene->arc_linesearch) {
-      PetscReal alpha;
-      PetscCall(LineSearch(a, aug, dlam, rnorm, &alpha));
-    } else {
-      PetscCall(VecAXPY(a->u, damp, a->duI));
-      PetscCall(VecAXPY(a->u, damp * dlam, aug ? a->m->u_ref : a->v));
-      a->lam += damp * dlam;
-    }
+    PetscCall(VecAXPY(a->u, damp, a->duI));
+    PetscCall(VecAXPY(a->u, damp * dlam, aug ? a->m->u_ref : a->v));
+    a->lam += damp * dlam;
   }
   a->why = "Newton iterations exhausted";
   PetscFunctionReturn(0);
@@ -510,7 +481,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
   {
-    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row, &a.ubase};
+    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDuplicate(m->f_ref, work[k]));
   }
   PetscCall(PDPathCreate(m, &path));
@@ -629,7 +600,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PetscCall(KSPDestroy(&a.ksp));
   PetscCall(MatDestroy(&a.J));
   {
-    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row, &a.ubase, &u_prev};
+    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row, &u_prev};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));
   }
   PetscCall(PDPathDestroy(&path));
