@@ -43,6 +43,14 @@ PetscErrorCode PDOptionReal(PetscOptionItems *PetscOptionsObject, const char *op
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode PDOptionFraction(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *value) {
+  PetscFunctionBeginUser;
+  PetscCall(PDOptionReal(PetscOptionsObject, opt, help, value, NULL));
+  PetscCheck(*value >= 0 && *value < 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: must lie in [0, 1), got %g", opt,
+             (double)*value);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscInt *value, PetscBool *set) {
   char      shown[64], buf[256], *end;
   PetscBool flg;

@@ -4,6 +4,8 @@
 #include <petscsys.h>
 
 PetscErrorCode PDOptionReal(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *value, PetscBool *set);
+/* A real in [0, 1): scatters, fractions of the peak, relative tolerances. */
+PetscErrorCode PDOptionFraction(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscReal *value);
 PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscInt *value, PetscBool *set);
 PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, PetscBool *value, PetscBool *set);
 PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, const char *opt, const char *help, const char *const *names,

@@ -413,12 +413,11 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                            NULL));
     sc->stretch = (PDStretch)v;
   }
-  PetscCall(PDOptionReal(PetscOptionsObject, "-pd_strength_scatter",
-                         "Relative scatter r of the tensile strength per bond, f_t (1 + r xi) with xi in [-1, 1] from the bond's global id "
-                         "(the same on any rank count); the fracture energy is kept. Heterogeneity that lets diffuse damage localise",
-                         &sc->strength_scatter, NULL));
-  PetscCheck(sc->strength_scatter >= 0 && sc->strength_scatter < 1, comm, PETSC_ERR_USER_INPUT,
-             "Option -pd_strength_scatter: must lie in [0, 1), got %g", (double)sc->strength_scatter);
+  PetscCall(
+      PDOptionFraction(PetscOptionsObject, "-pd_strength_scatter",
+                       "Relative scatter r of the tensile strength per bond, f_t (1 + r xi) with xi in [-1, 1] from the bond's global id "
+                       "(the same on any rank count); the fracture energy is kept. Heterogeneity that lets diffuse damage localise",
+                       &sc->strength_scatter));
   PetscCall(PDOptionBool(PetscOptionsObject, "-pd_sc_correction",
                          "Per-bond critical stretch from lambda_ij c when surface correction is on (Eq. 5.32)", &sc->sc_correction, NULL));
   PetscCall(
@@ -536,12 +535,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                             "Path following: accepted steps after a cut during which the arc length does not grow", &sc->arc_hold, NULL));
       PetscCheck(sc->arc_hold >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_hold: must be non-negative, got %" PetscInt_FMT,
                  sc->arc_hold);
-      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_kink_rtol",
-                             "Path following: when bonds keep swapping between secant and envelope at their kink, accept the frozen "
-                             "equilibrium once the real law's residual is below this fraction of |f_int| (0: never)",
-                             &sc->arc_kink_rtol, NULL));
-      PetscCheck(sc->arc_kink_rtol >= 0 && sc->arc_kink_rtol < 1, comm, PETSC_ERR_USER_INPUT,
-                 "Option -pd_arclength_kink_rtol: must lie in [0, 1), got %g", (double)sc->arc_kink_rtol);
+      PetscCall(PDOptionFraction(PetscOptionsObject, "-pd_arclength_kink_rtol",
+                                 "Path following: when bonds keep swapping between secant and envelope at their kink, accept the frozen "
+                                 "equilibrium once the real law's residual is below this fraction of |f_int| (0: never)",
+                                 &sc->arc_kink_rtol));
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
                              "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
                              &sc->arc_initial, NULL));
@@ -555,16 +552,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                             &sc->arc_target_its, NULL));
       PetscCheck(sc->arc_target_its >= 1, comm, PETSC_ERR_USER_INPUT,
                  "Option -pd_arclength_target_its: must be at least 1, got %" PetscInt_FMT, sc->arc_target_its);
-      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_stop_fraction",
-                             "After the peak, stop with status separated once the load falls below this fraction of it; 0: off",
-                             &sc->stop_fraction, NULL));
-      PetscCheck(sc->stop_fraction >= 0 && sc->stop_fraction < 1, comm, PETSC_ERR_USER_INPUT,
-                 "Option -pd_stop_fraction: must lie in [0, 1), got %g", (double)sc->stop_fraction);
-      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_unload_at",
-                             "After the peak, unload once the load falls to this fraction of the peak, then load again; 0: off",
-                             &sc->unload_at, NULL));
-      PetscCheck(sc->unload_at >= 0 && sc->unload_at < 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_unload_at: must lie in [0, 1), got %g",
-                 (double)sc->unload_at);
+      PetscCall(PDOptionFraction(PetscOptionsObject, "-pd_stop_fraction",
+                                 "After the peak, stop with status separated once the load falls below this fraction of it; 0: off",
+                                 &sc->stop_fraction));
+      PetscCall(PDOptionFraction(PetscOptionsObject, "-pd_unload_at",
+                                 "After the peak, unload once the load falls to this fraction of the peak, then load again; 0: off",
+                                 &sc->unload_at));
       PetscCheck(
           sc->unload_at == 0 || sc->arc_type != PD_ARC_DISSIPATION, comm, PETSC_ERR_USER_INPUT,
           "Option -pd_unload_at: unloading dissipates nothing, so the dissipation constraint cannot follow it; use cmod, cylindrical "

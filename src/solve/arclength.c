@@ -268,17 +268,16 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
          history its branch assumes; otherwise the bonds on the wrong side change branch and Newton goes on */
       PetscInt  nflipped;
       PetscReal rfree;
+      PetscBool at_kink;
       m->branch = NULL;
       PetscCall(Residual(a, &rfree, &fnorm));
       /* -pd_arclength_kink_rtol: once the flips repeat, a few bonds whose equilibrium lies at their kink
          (on the secant it puts them past their history, on the envelope below it) swap branch for ever; the
          frozen equilibrium is accepted when the real law's residual is below the looser tolerance (the bonds
          keep their secant force for this step, and their history takes the stretch they reached) */
-      if (rfree > tol && flips >= 2 && rfree <= m->scene->arc_kink_rtol * fnorm) {
-        PetscCall(PetscInfo(NULL, "arclength: frozen equilibrium accepted at a kink, real law |R| %g\n", (double)rfree));
-        rfree = 0;
-      }
-      if (rfree > tol) {
+      at_kink = rfree > tol && flips >= 2 && rfree <= m->scene->arc_kink_rtol * fnorm ? PETSC_TRUE : PETSC_FALSE;
+      if (at_kink) PetscCall(PetscInfo(NULL, "arclength: frozen equilibrium accepted at a kink, real law |R| %g\n", (double)rfree));
+      if (rfree > tol && !at_kink) {
         m->branch = a->branch;
         PetscCall(PDModelFlipBranches(m, a->u, &nflipped));
         PetscCall(PetscInfo(NULL, "arclength: frozen branches in equilibrium, real law |R| %g: %" PetscInt_FMT " bonds change branch\n",
@@ -289,7 +288,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
         rises = 0;
         PetscCall(Residual(a, &rnorm, &fnorm));
       } else
-        rnorm = rfree;
+        rnorm = at_kink ? tol : rfree; /* in equilibrium, within the kink tolerance */
     }
     if (rnorm <= tol) {
       PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));
