@@ -56,7 +56,11 @@ typedef enum {
   PD_BRANCH_FREE,     /* loading beyond the history, secant below it */
   PD_BRANCH_SECANT,   /* secant at the committed history, whatever the stretch */
   PD_BRANCH_ENVELOPE, /* the softening envelope at the current stretch, whatever the history */
+  PD_BRANCH_KINK,     /* the real law's force with the secant slope: a bond flipped back, whose equilibrium
+                         lies at its kink (the slope keeps Newton from swapping its branch for ever) */
 } PDBranch;
+#define PD_BRANCH_MASK 3 /* the branch; the bit above marks a bond flipped once in this step */
+#define PD_BRANCH_FLIPPED 4
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
@@ -74,7 +78,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscIn
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);
-PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped);
+PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscInt *nkink);
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);

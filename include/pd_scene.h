@@ -98,7 +98,6 @@ typedef struct {
   PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
   PetscInt   arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
   PetscInt   arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
-  PetscReal  arc_kink_rtol;  /* frozen branches that keep flipping: real-law residual accepted below this fraction of |f_int| */
   PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
   PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */

@@ -76,12 +76,20 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
     const PDLawBond *t       = Thresholds(m, e, law);
     PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
     kap                      = EffectiveHistory(m, e, law, t, s, &cap);
-    if (m->branch && m->branch[e] == PD_BRANCH_SECANT) {
+    switch (m->branch ? m->branch[e] & PD_BRANCH_MASK : PD_BRANCH_FREE) {
+    case PD_BRANCH_SECANT:
       kap     = m->kappa[e];
       loading = PETSC_FALSE;
-    } else if (m->branch && m->branch[e] == PD_BRANCH_ENVELOPE) {
+      break;
+    case PD_BRANCH_ENVELOPE:
       kap     = s >= cap ? cap * (1 - 1e-12) : s;
       loading = PETSC_TRUE;
+      break;
+    case PD_BRANCH_KINK:
+      loading = PETSC_FALSE;
+      break;
+    default:
+      break;
     }
     d  = PDLawDamage(law, t, kap, &dd);
     *g = c * (1 - d) * s;

@@ -535,10 +535,6 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                             "Path following: accepted steps after a cut during which the arc length does not grow", &sc->arc_hold, NULL));
       PetscCheck(sc->arc_hold >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_hold: must be non-negative, got %" PetscInt_FMT,
                  sc->arc_hold);
-      PetscCall(PDOptionFraction(PetscOptionsObject, "-pd_arclength_kink_rtol",
-                                 "Path following: when bonds keep swapping between secant and envelope at their kink, accept the frozen "
-                                 "equilibrium once the real law's residual is below this fraction of |f_int| (0: never)",
-                                 &sc->arc_kink_rtol));
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
                              "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
                              &sc->arc_initial, NULL));

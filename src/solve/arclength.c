@@ -266,29 +266,26 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     if (rnorm <= tol && m->branch) {
       /* equilibrium on frozen branches: it holds for the real law once every bond is on the side of its
          history its branch assumes; otherwise the bonds on the wrong side change branch and Newton goes on */
-      PetscInt  nflipped;
+      PetscInt  nflipped, nkink;
       PetscReal rfree;
-      PetscBool at_kink;
       m->branch = NULL;
       PetscCall(Residual(a, &rfree, &fnorm));
-      /* -pd_arclength_kink_rtol: once the flips repeat, a few bonds whose equilibrium lies at their kink
-         (on the secant it puts them past their history, on the envelope below it) swap branch for ever; the
-         frozen equilibrium is accepted when the real law's residual is below the looser tolerance (the bonds
-         keep their secant force for this step, and their history takes the stretch they reached) */
-      at_kink = rfree > tol && flips >= 2 && rfree <= m->scene->arc_kink_rtol * fnorm ? PETSC_TRUE : PETSC_FALSE;
-      if (at_kink) PetscCall(PetscInfo(NULL, "arclength: frozen equilibrium accepted at a kink, real law |R| %g\n", (double)rfree));
-      if (rfree > tol && !at_kink) {
+      if (rfree > tol) {
+        /* a bond that has to flip back has its equilibrium at its kink and is held there (PDModelFlipBranches),
+           so a band of such bonds cannot swap branches in a cycle */
         m->branch = a->branch;
-        PetscCall(PDModelFlipBranches(m, a->u, &nflipped));
-        PetscCall(PetscInfo(NULL, "arclength: frozen branches in equilibrium, real law |R| %g: %" PetscInt_FMT " bonds change branch\n",
-                            (double)rfree, nflipped));
+        PetscCall(PDModelFlipBranches(m, a->u, &nflipped, &nkink));
+        PetscCall(PetscInfo(NULL,
+                            "arclength: frozen branches in equilibrium, real law |R| %g: %" PetscInt_FMT
+                            " bonds change branch, %" PetscInt_FMT " of them back (held at their kink)\n",
+                            (double)rfree, nflipped, nkink));
         a->why = "frozen branches do not settle";
         if (!nflipped || ++flips > 30) PetscFunctionReturn(0);
         k     = 0;
         rises = 0;
         PetscCall(Residual(a, &rnorm, &fnorm));
       } else
-        rnorm = at_kink ? tol : rfree; /* in equilibrium, within the kink tolerance */
+        rnorm = rfree;
     }
     if (rnorm <= tol) {
       PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));

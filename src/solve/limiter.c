@@ -177,27 +177,30 @@ PetscErrorCode PDModelFreezeBranches(PDModel *m, Vec u, unsigned char *branch, P
 }
 
 /* Moves frozen bonds whose stretch at u lies on the other side of their history to that side's branch:
-   an envelope bond unloading below kappa_n goes secant, a secant bond stretched past kappa_n loads. */
-PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped) {
-  unsigned char *branch = m->branch;
-  PetscInt       mine   = 0;
+   an envelope bond unloading below kappa_n goes secant, a secant bond stretched past kappa_n loads. A
+   bond that has to flip back (its equilibrium lies at its kink: on the secant it loads, on the envelope
+   it unloads) goes to PD_BRANCH_KINK instead, the real law with the secant slope, so that a band of such
+   bonds cannot swap branches in a cycle. */
+PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped, PetscInt *nkink) {
+  unsigned char *branch  = m->branch;
+  PetscInt       mine[2] = {0, 0}, total[2];
 
   PetscFunctionBeginUser;
   PetscCheck(branch, m->lat->comm, PETSC_ERR_ORDER, "no frozen branches to flip");
   PetscCall(StretchesAt(m, u, m->stretch));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     const PetscReal s = m->stretch[e], k = m->kappa[e];
-    PDBranch        to;
-    if (branch[e] == PD_BRANCH_SECANT && s > k)
-      to = PD_BRANCH_ENVELOPE;
-    else if (branch[e] == PD_BRANCH_ENVELOPE && s < k)
-      to = PD_BRANCH_SECANT;
-    else
-      continue;
-    branch[e] = (unsigned char)to;
-    if (PDBondCountedHere(m->lat, m->bonds, e)) mine++;
+    const PDBranch  b = (PDBranch)(branch[e] & PD_BRANCH_MASK);
+    PetscBool       back;
+    if (!((b == PD_BRANCH_SECANT && s > k) || (b == PD_BRANCH_ENVELOPE && s < k))) continue;
+    back = branch[e] & PD_BRANCH_FLIPPED ? PETSC_TRUE : PETSC_FALSE;
+    branch[e] =
+        back ? PD_BRANCH_KINK : (unsigned char)((b == PD_BRANCH_SECANT ? PD_BRANCH_ENVELOPE : PD_BRANCH_SECANT) | PD_BRANCH_FLIPPED);
+    if (PDBondCountedHere(m->lat, m->bonds, e)) mine[back]++;
   }
-  PetscCall(MPIU_Allreduce(&mine, nflipped, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  PetscCall(MPIU_Allreduce(mine, total, 2, MPIU_INT, MPI_SUM, m->lat->comm));
+  *nflipped = total[0] + total[1];
+  *nkink    = total[1];
   PetscFunctionReturn(0);
 }
 
