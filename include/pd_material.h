@@ -7,8 +7,10 @@ PetscReal PDInfluenceValue(PDInfluence, PetscReal len, PetscReal horizon);
 PetscReal PDInfluenceMoment(PDInfluence, PetscInt k); /* int_0^1 omega(r) r^k dr */
 PetscReal PDLatticeFractureRatio(const PDScene *);
 
-/* Bond states the damage limiter hands out one level at a time. */
-typedef enum { PD_BOND_ELASTIC = 0, PD_BOND_SOFTENING = 1, PD_BOND_BROKEN = 2 } PDBondLevel;
+/* Bond states the damage limiter hands out one level at a time: elastic, then the softening branch in
+   -pd_limiter_sublevels parts (geometric in stretch from s0 to sc), then broken. */
+typedef enum { PD_BOND_ELASTIC = 0, PD_BOND_SOFTENING = 1 } PDBondLevel;
+#define PD_BOND_LEVEL_OPEN 255 /* every threshold passed: the explicit path, which has no limiter */
 
 /* Stretch thresholds of one bond: end of the elastic branch, trilinear kink, critical stretch. */
 typedef struct {
@@ -28,6 +30,7 @@ typedef struct {
   PetscReal beta;      /* trilinear force ratio at s1 */
   PetscReal k, alpha;  /* non-linear law shape */
   PetscBool per_bond;  /* critical stretch from lambda_ij c (Eq. 5.32 generalised) */
+  PetscInt  sublevels; /* limiter levels on the softening branch */
 } PDLaw;
 
 PetscErrorCode PDLawSetUp(const PDScene *, const PDMaterial *, PDLaw *);
@@ -39,5 +42,8 @@ PetscReal PDLawDamage(const PDLaw *, const PDLawBond *, PetscReal kappa, PetscRe
 PetscReal PDLawEnvelopeWork(const PDLaw *, const PDLawBond *, PetscReal kappa);
 /* Area under g/c from 0 to sc for the nominal bond (per unit micromodulus): the bond's fracture work. */
 PetscReal PDLawWorkOfFracture(const PDLaw *);
-/* The threshold at which a bond of the given level leaves it (s0 into softening, sc into breaking). */
-PetscReal PDLawNextThreshold(const PDLaw *, const PDLawBond *, PDBondLevel);
+/* The threshold at which a bond of the given level leaves it (s0 into softening, s0 (sc/s0)^(L/K) to the
+   next of K softening levels, sc into breaking). */
+PetscReal PDLawNextThreshold(const PDLaw *, const PDLawBond *, PetscInt level);
+/* The level consistent with a history kappa: the number of thresholds at or below it. */
+PetscInt PDLawLevelOf(const PDLaw *, const PDLawBond *, PetscReal kappa);

@@ -104,6 +104,7 @@ typedef struct {
   PDTangent  tangent;
   PetscInt   limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
   PetscInt   limiter_stage_its; /* Newton iterations between grants while events are pending */
+  PetscInt   limiter_sublevels; /* limiter levels on the softening branch (1: one, s0 to sc) */
   PetscReal  lambda_max;        /* end of the load path */
   PetscReal  dlambda_min, dlambda_max;
   PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */

@@ -35,6 +35,7 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_unload_at", "0.5", "-pd_reload_at", "0.6"], "-pd_reload_at"),
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_halved_its", "-3"], "-pd_arclength_halved_its"),
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_hold", "-1"], "-pd_arclength_hold"),
+    ("gregoire_d50_hn", ["-pd_limiter_sublevels", "0"], "-pd_limiter_sublevels"),
 ]
 
 

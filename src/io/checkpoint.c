@@ -179,9 +179,13 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscViewer v) {
   PetscCall(VecGetArrayRead(K, &k));
   PetscCall(VecGetArrayRead(L, &l));
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt e = bd->inc_bond[p];
-    m->kappa[e]      = PetscRealPart(k[p]);
-    m->level[e] = m->level_n[e] = (unsigned char)PetscRealPart(l[p]);
+    const PetscInt   e   = bd->inc_bond[p];
+    const PDLaw     *law = &m->law[bd->material[e]];
+    const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+    m->kappa[e]          = PetscRealPart(k[p]);
+    /* at least the level its history has passed: a leg may run with other -pd_limiter_sublevels */
+    m->level[e] = m->level_n[e] =
+        (unsigned char)PetscMin(PetscMax((PetscInt)PetscRealPart(l[p]), PDLawLevelOf(law, t, m->kappa[e])), law->sublevels + 1);
   }
   PetscCall(VecRestoreArrayRead(K, &k));
   PetscCall(VecRestoreArrayRead(L, &l));

@@ -54,17 +54,18 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) 
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(law, sizeof *law));
-  law->kind     = mat->law;
-  law->c        = PDMicromodulus(sc, mat->E);
-  law->E        = mat->E;
-  law->ft       = mat->ft;
-  law->Gf       = mat->Gf;
-  law->kr       = mat->kr;
-  law->bobaru   = mat->bobaru;
-  law->beta     = mat->beta;
-  law->k        = mat->k;
-  law->alpha    = mat->alpha;
-  law->per_bond = sc->surface_correction && sc->sc_correction;
+  law->kind      = mat->law;
+  law->sublevels = PetscMax(1, sc->limiter_sublevels); /* a zeroed scene (unit tests) means one */
+  law->c         = PDMicromodulus(sc, mat->E);
+  law->E         = mat->E;
+  law->ft        = mat->ft;
+  law->Gf        = mat->Gf;
+  law->kr        = mat->kr;
+  law->bobaru    = mat->bobaru;
+  law->beta      = mat->beta;
+  law->k         = mat->k;
+  law->alpha     = mat->alpha;
+  law->per_bond  = sc->surface_correction && sc->sc_correction;
   if (sc->dim == 3)
     geo = PETSC_PI * law->c * PDInfluenceMoment(sc->influence, 4) * PetscPowReal(delta, 5);
   else
@@ -137,8 +138,16 @@ PetscReal PDLawWorkOfFracture(const PDLaw *law) {
   return PDLawEnvelopeWork(law, &law->nominal, law->nominal.sc);
 }
 
-PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PDBondLevel level) {
-  if (law->kind == PD_LAW_ELASTIC || level == PD_BOND_BROKEN) return PETSC_MAX_REAL;
-  if (level == PD_BOND_ELASTIC && law->kind != PD_LAW_LINEAR) return t->s0;
-  return t->sc;
+PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PetscInt level) {
+  if (law->kind == PD_LAW_ELASTIC || level > law->sublevels) return PETSC_MAX_REAL;
+  if (law->kind == PD_LAW_LINEAR) return t->sc;
+  if (level == PD_BOND_ELASTIC) return t->s0;
+  /* sub-levels hold a bond that snaps along its envelope at points the limiter grants one at a time */
+  return level == law->sublevels ? t->sc : t->s0 * PetscPowReal(t->sc / t->s0, (PetscReal)level / law->sublevels);
+}
+
+PetscInt PDLawLevelOf(const PDLaw *law, const PDLawBond *t, PetscReal kappa) {
+  PetscInt level = 0;
+  while (level <= law->sublevels && kappa >= PDLawNextThreshold(law, t, level)) level++;
+  return level;
 }

@@ -49,7 +49,7 @@ static inline const PDLawBond *Thresholds(const PDModel *m, PetscInt e, const PD
    threshold the limiter has not yet let it pass (the limit from below). */
 static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDLaw *law, const PDLawBond *t, PetscReal s, PetscReal *cap) {
   const PetscReal kap = PetscMax(m->kappa[e], s);
-  *cap                = PDLawNextThreshold(law, t, (PDBondLevel)m->level[e]);
+  *cap                = PDLawNextThreshold(law, t, m->level[e]);
   return kap >= *cap ? *cap * (1 - 1e-12) : kap;
 }
 

@@ -348,6 +348,7 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   sc->sc_correction      = PETSC_TRUE;
   sc->limiter_max        = -1; /* by bond count, PDModelLimiterCap */
   sc->limiter_stage_its  = 1;
+  sc->limiter_sublevels  = 1;
   sc->lambda_max         = 1;
   sc->dlambda_min        = 1e-6;
   sc->dt_safety          = 0.7;
@@ -625,6 +626,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                         &sc->limiter_stage_its, NULL));
   PetscCheck(sc->limiter_stage_its >= 1, comm, PETSC_ERR_USER_INPUT, "Option -pd_limiter_stage_its: must be at least 1, got %" PetscInt_FMT,
              sc->limiter_stage_its);
+  PetscCall(PDOptionInt(PetscOptionsObject, "-pd_limiter_sublevels",
+                        "Damage limiter: levels on the softening branch (geometric in stretch from s0 to sc), each granted as an event; "
+                        "1: the whole branch at once",
+                        &sc->limiter_sublevels, NULL));
+  PetscCheck(sc->limiter_sublevels >= 1 && sc->limiter_sublevels <= 100, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_limiter_sublevels: must be 1 to 100, got %" PetscInt_FMT, sc->limiter_sublevels);
   PetscCall(PDOptionInt(PetscOptionsObject, "-pd_fields_every", "Write fields every N steps (0: last step only)", &sc->fields_every, NULL));
   PetscCheck(sc->fields_every >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_fields_every: must be non-negative, got %" PetscInt_FMT,
              sc->fields_every);

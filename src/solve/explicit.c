@@ -315,7 +315,7 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   c->m   = m;
   c->rec = rec;
   /* dynamics has no limiter: every level is open, and histories rise with each force evaluation */
-  for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_BROKEN;
+  for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
   m->commit_history = m->softening;
   PetscCall(StableTimeStep(m, &dt_stable));
   c->dt     = sc->adr ? 1 : sc->dt_safety * dt_stable; /* dynamic relaxation counts time in steps */

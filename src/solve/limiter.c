@@ -40,7 +40,7 @@ static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s) {
 
 static PetscReal Threshold(const PDModel *m, PetscInt e) {
   const PDLaw *law = &m->law[m->bonds->material[e]];
-  return PDLawNextThreshold(law, m->thr ? &m->thr[e] : &law->nominal, (PDBondLevel)m->level[e]);
+  return PDLawNextThreshold(law, m->thr ? &m->thr[e] : &law->nominal, m->level[e]);
 }
 
 PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted) {
