@@ -1,9 +1,10 @@
 /* Damage limiter and bond history.
 
-   A bond event is a bond entering the softening branch for the first time (passing s0) or breaking
-   (passing sc). Within a load step the history kappa_n of the last accepted step is fixed and every
-   bond is allowed a level (elastic, softening, broken); a bond whose stretch passes the threshold of its
-   level is held there (kernel.c) and becomes a candidate. After each Newton stage the limiter lets the
+   A bond event is a bond entering the softening branch for the first time (passing s0), passing into
+   the next of the -pd_limiter_sublevels parts of that branch, or breaking (passing sc). Within a load
+   step the history kappa_n of the last accepted step is fixed and every bond is allowed a level
+   (elastic, softening part 1 to K, broken); a bond whose stretch passes the threshold of its level is
+   held there (kernel.c: secant beyond it, a positive slope) and becomes a candidate. After each Newton stage the limiter lets the
    max_events most critical candidates (largest stretch over threshold; ties by global bond id) move up
    one level. The decision is global and deterministic: every rank proposes its own best candidates,
    all ranks see the same merged list, so the sequence does not depend on the number of ranks. */
