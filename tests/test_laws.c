@@ -156,6 +156,27 @@ int main(int argc, char **argv) {
     CheckRel("linear: elastic just below sc", Force(&law, &kappa, 0.999 * sc), 0.999 * sc, 1e-12);
     Check(Force(&law, &kappa, sc) == 0 ? PETSC_TRUE : PETSC_FALSE, "linear: broken at sc", 0, 0);
   }
+  /* Limiter thresholds: s0, then K parts of the softening branch geometric in stretch, sc, open; the
+     level of a history is the number of thresholds it has passed. */
+  MakeLaw(PD_LAW_NONLINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);
+  {
+    const PDLawBond *t = &law.nominal;
+    CheckRel("one part: level 0 leaves at s0", PDLawNextThreshold(&law, t, 0), t->s0, 1e-15);
+    CheckRel("one part: level 1 leaves at sc", PDLawNextThreshold(&law, t, 1), t->sc, 1e-15);
+    Check(PDLawNextThreshold(&law, t, 2) == PETSC_MAX_REAL, "one part: level 2 open", PDLawNextThreshold(&law, t, 2), PETSC_MAX_REAL);
+    law.sublevels = 4;
+    CheckRel("4 parts: level 2 leaves at sqrt(s0 sc)", PDLawNextThreshold(&law, t, 2), PetscSqrtReal(t->s0 * t->sc), 1e-12);
+    CheckRel("4 parts: level 4 leaves at sc", PDLawNextThreshold(&law, t, 4), t->sc, 1e-15);
+    Check(PDLawNextThreshold(&law, t, 5) == PETSC_MAX_REAL, "4 parts: level 5 open", PDLawNextThreshold(&law, t, 5), PETSC_MAX_REAL);
+    Check(PDLawLevelOf(&law, t, 0.5 * t->s0) == 0, "4 parts: history below s0 is level 0", PDLawLevelOf(&law, t, 0.5 * t->s0), 0);
+    Check(PDLawLevelOf(&law, t, 1.01 * PetscSqrtReal(t->s0 * t->sc)) == 3, "4 parts: history just past sqrt(s0 sc) is level 3",
+          PDLawLevelOf(&law, t, 1.01 * PetscSqrtReal(t->s0 * t->sc)), 3);
+    Check(PDLawLevelOf(&law, t, t->sc) == 5, "4 parts: history at sc is level 5 (broken)", PDLawLevelOf(&law, t, t->sc), 5);
+  }
+  MakeLaw(PD_LAW_LINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);
+  law.sublevels = 4;
+  Check(PDLawNextThreshold(&law, &law.nominal, 2) == PETSC_MAX_REAL, "linear law: no parts, level 2 open whatever K",
+        PDLawNextThreshold(&law, &law.nominal, 2), PETSC_MAX_REAL);
   {
     const int rc = CheckSummary();
     PetscCall(PetscFinalize());

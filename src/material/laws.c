@@ -139,8 +139,9 @@ PetscReal PDLawWorkOfFracture(const PDLaw *law) {
 }
 
 PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PetscInt level) {
-  if (law->kind == PD_LAW_ELASTIC || level > law->sublevels) return PETSC_MAX_REAL;
-  if (law->kind == PD_LAW_LINEAR) return t->sc;
+  if (law->kind == PD_LAW_ELASTIC) return PETSC_MAX_REAL;
+  if (law->kind == PD_LAW_LINEAR) return level <= 1 ? t->sc : PETSC_MAX_REAL; /* no softening branch to divide */
+  if (level > law->sublevels) return PETSC_MAX_REAL;
   if (level == PD_BOND_ELASTIC) return t->s0;
   /* sub-levels hold a bond that snaps along its envelope at points the limiter grants one at a time */
   return level == law->sublevels ? t->sc : t->s0 * PetscPowReal(t->sc / t->s0, (PetscReal)level / law->sublevels);
