@@ -216,8 +216,8 @@ def sublevels():
     # which holds a bond that snaps along its envelope where the limiter can step it through. It must not
     # change the answer: the 2D half-notched beam (dx = 10 mm) to 2 % of its peak against one level with one
     # bond event per iteration, the most resolved path. Measured peaks (N): that reference 3,648.4, 8 levels
-    # 3,642.9, one level with the default limiter 3,609.5 (it steps past the top; half the first arc length
-    # gives 3,642.7). At dx = 5 mm: 3,405.8 with 8 levels, 3,406.8 with one, for 2.8 times the iterations.
+    # 3,641.2, one level with the default limiter 3,609.5 (it steps past the top; half the first arc length
+    # gives 3,642.7). At dx = 5 mm: 3,405.8 with 8 levels, 3,406.8 with one, for 2.1 times the iterations.
     opts = ["-pd_dx", "0.01", "-pd_control", "arclength", "-pd_stop_fraction", "0.02"]
     one, eight = run(HN2D, *opts, "-pd_limiter_max_bonds", "1"), run(HN2D, *opts, "-pd_limiter_sublevels", "8")
     for name, r in (("1 level, 1 event", one), ("8 levels", eight)):

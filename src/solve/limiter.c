@@ -51,7 +51,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscReal       *s;
   Candidate       *mine, *all = NULL;
   PetscInt64      *ids   = NULL;
-  PetscInt         nmine = 0, nlocal_cand = 0, ntake, nall = 0;
+  PetscInt         nmine = 0, nlocal_cand = 0, ntake, nall = 0, nparts = 0, parts;
   PetscMPIInt      size, nsend, *counts, *displs;
 
   PetscFunctionBeginUser;
@@ -59,11 +59,21 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   if (!m->softening) PetscFunctionReturn(0);
   s = m->stretch;
   PetscCall(StretchesAt(m, u, s));
-  /* criticality s / threshold, >= 1 for a held bond, kept in place of the stretch */
+  /* criticality s / threshold, >= 1 for a held bond, kept in place of the stretch. A bond passing from
+     one part of its softening branch to the next (-pd_limiter_sublevels) neither enters softening nor
+     breaks: it goes on at once, one part per stage, and only the other events are counted and capped */
   for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PDLaw *law = &m->law[bd->material[e]];
     s[e] /= Threshold(m, e);
-    if (s[e] >= 1) nlocal_cand++;
+    if (s[e] < 1) continue;
+    if (law->kind != PD_LAW_LINEAR && m->level[e] >= PD_BOND_SOFTENING && m->level[e] < law->sublevels) {
+      m->level[e]++;
+      s[e] = 0;
+      if (PDBondCountedHere(lat, bd, e)) nparts++;
+    } else
+      nlocal_cand++;
   }
+  PetscCall(MPIU_Allreduce(&nparts, &parts, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(PetscMalloc1(PetscMax(1, nlocal_cand), &mine));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     if (s[e] >= 1 && PDBondCountedHere(lat, bd, e)) {
@@ -74,6 +84,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   }
   PetscCall(MPIU_Allreduce(&nmine, ncandidates, 1, MPIU_INT, MPI_SUM, comm));
   if (*ncandidates == 0) {
+    *ncandidates = *granted = parts;
     PetscCall(PetscFree(mine));
     PetscFunctionReturn(0);
   }
@@ -108,6 +119,8 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     PetscCall(PetscFree2(all, ids));
     PetscCall(PetscFree2(counts, displs));
   }
+  *ncandidates += parts;
+  *granted += parts;
   PetscCall(PetscFree(mine));
   PetscFunctionReturn(0);
 }
