@@ -508,6 +508,8 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     rec->newton_its += a.its;
     rec->ksp_its += a.lits;
     if (!ok) {
+      PetscCall(PetscInfo(NULL, "arclength: step %" PetscInt_FMT " cut at %s %g after %" PetscInt_FMT " Newton iterations: %s\n",
+                          path.step + 1, a.type == ARC_LOAD ? "increment" : "arc length", (double)len, a.its, a.why));
       PetscCall(PDModelRestoreLevels(m));
       if (a.type == ARC_LOAD ? a.dlam * 0.5 < sc->dlambda_min : a.dl * 0.5 < 1e-6 * a.dl0) {
         rec->converged = PETSC_FALSE;
