@@ -15,6 +15,7 @@
      refused before any output is written.
    The file is written under a temporary name and renamed once complete. */
 #include "pd_io.h"
+#include "kernel.h"
 #include <petscviewerhdf5.h>
 #include <stdio.h>
 #include <string.h>
@@ -33,7 +34,7 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
     const PDLaw *law = &m->law[bd->material[e]];
     if (!PDBondCountedHere(m->lat, bd, e)) continue;
     mine[0] += bd->coef[e];
-    if (law->kind != PD_LAW_ELASTIC) mine[1] += m->thr ? m->thr[e].sc : law->nominal.sc;
+    if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc;
   }
   PetscCall(MPIU_Allreduce(mine, sum, 2, MPIU_REAL, MPI_SUM, m->lat->comm));
   fp[0] = (PetscReal)m->lat->nglobal;
@@ -181,7 +182,7 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscViewer v) {
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
     const PetscInt   e   = bd->inc_bond[p];
     const PDLaw     *law = &m->law[bd->material[e]];
-    const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+    const PDLawBond *t   = PDModelBondThresholds(m, e, law);
     m->kappa[e]          = PetscRealPart(k[p]);
     /* at least the level its history has passed: a leg may run with other -pd_limiter_sublevels */
     m->level[e] = m->level_n[e] =

@@ -41,10 +41,6 @@ static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *x
   }
 }
 
-static inline const PDLawBond *Thresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
-  return m->thr ? &m->thr[e] : &law->nominal;
-}
-
 /* The largest stretch a bond's law sees at stretch s: its history, raised by s, and held just below the
    threshold the limiter has not yet let it pass (the limit from below). */
 static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDLaw *law, const PDLawBond *t, PetscReal s, PetscReal *cap) {
@@ -73,7 +69,7 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
     return;
   }
   {
-    const PDLawBond *t       = Thresholds(m, e, law);
+    const PDLawBond *t       = PDModelBondThresholds(m, e, law);
     PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
     kap                      = EffectiveHistory(m, e, law, t, s, &cap);
     switch (m->branch ? m->branch[e] & PD_BRANCH_MASK : PD_BRANCH_FREE) {
@@ -144,7 +140,7 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
     }
     {
       const PDLaw     *law = &m->law[bd->material[e]];
-      const PDLawBond *t   = Thresholds(m, e, law);
+      const PDLawBond *t   = PDModelBondThresholds(m, e, law);
       PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(s, 0), &cap), d = PDLawDamage(law, t, kap, &dd);
       es += 0.5 * c * (s < 0 ? 1 : 1 - d) * s * s * L0;
       ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
@@ -295,5 +291,5 @@ PetscReal PDModelBondDamage(const PDModel *m, PetscInt e) {
   PetscReal    dd;
   if (!m->softening) return 0;
   law = &m->law[m->bonds->material[e]];
-  return PDLawDamage(law, Thresholds(m, e, law), m->kappa[e], &dd);
+  return PDLawDamage(law, PDModelBondThresholds(m, e, law), m->kappa[e], &dd);
 }

@@ -10,6 +10,11 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
                                         PetscScalar *y);
 PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
+
+/* A bond's stretch thresholds: its own (scatter, surface correction) or its law's nominal ones. */
+static inline const PDLawBond *PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
+  return m->thr ? &m->thr[e] : &law->nominal;
+}
 PetscReal      PDModelBondDamage(const PDModel *, PetscInt e);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);
 PetscErrorCode PDModelRestoreLocal(PDModel *, const PetscScalar **ul, Vec *loc);

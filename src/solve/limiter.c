@@ -41,7 +41,7 @@ static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s) {
 
 static PetscReal Threshold(const PDModel *m, PetscInt e) {
   const PDLaw *law = &m->law[m->bonds->material[e]];
-  return PDLawNextThreshold(law, m->thr ? &m->thr[e] : &law->nominal, m->level[e]);
+  return PDLawNextThreshold(law, PDModelBondThresholds(m, e, law), m->level[e]);
 }
 
 PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted) {
@@ -129,7 +129,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
    its force have a kink at kappa_n (below s0 envelope and secant coincide). */
 static PetscBool Softened(const PDModel *m, PetscInt e) {
   const PDLaw     *law = &m->law[m->bonds->material[e]];
-  const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+  const PDLawBond *t   = PDModelBondThresholds(m, e, law);
   return law->kind != PD_LAW_ELASTIC && law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0 && m->kappa[e] < t->sc ? PETSC_TRUE : PETSC_FALSE;
 }
 
@@ -142,7 +142,7 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
   if (!m->softening) PetscFunctionReturn(0);
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw     *law = &m->law[bd->material[e]];
-    const PDLawBond *t   = m->thr ? &m->thr[e] : &law->nominal;
+    const PDLawBond *t   = PDModelBondThresholds(m, e, law);
     if (law->kind == PD_LAW_ELASTIC || !PDBondCountedHere(m->lat, bd, e)) continue;
     if (m->kappa[e] >= t->sc)
       count[0]++;
