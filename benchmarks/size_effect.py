@@ -63,9 +63,12 @@ def scene_args(D, kind, dx):
         # the bonds that then snapped as they entered softening (docs/arclength.md, "Bonds at their kink").
         # The energy released per step starts tiny where the first bonds soften; capped at 4 times that, the
         # descending branch would take about a thousand steps, so it may grow to 50 times, and steps aim at
-        # 10 Newton iterations (a step with 8 parts takes 2 to 3 limiter stages even when short)
+        # 10 Newton iterations (a step with 8 parts takes 2 to 3 limiter stages even when short). Past the peak
+        # the tangent is indefinite and GAMG built on it broke GMRES down; built on the secant matrix it does not
+        # (docs/solvers.md, "Indefinite tangents")
         args += ["-pd_arclength_halved_its", "8", "-pd_arclength_hold", "2", "-pd_arclength_type", "dissipation",
-                 "-pd_limiter_sublevels", "8", "-pd_arclength_growth", "50", "-pd_arclength_target_its", "10"]
+                 "-pd_limiter_sublevels", "8", "-pd_arclength_growth", "50", "-pd_arclength_target_its", "10",
+                 "-pd_pc_matrix", "secant"]
     if D == 50:
         # the path may run past the scene's load factor 1; the first step (lambda_max / steps) stays the scene's
         args += ["-pd_stop_cmod", "0", "-pd_lambda_max", "4", "-pd_steps", "800"]

@@ -17,6 +17,7 @@ typedef struct {
   Vec              f_local;     /* ghosted work vector for internal forces */
   Vec              x_local;     /* ghosted work vector for tangent products (created on first use) */
   PetscReal       *ka, *kb;     /* per-bond tangent scalars; NULL while the tangent is constant */
+  PetscReal       *kp;          /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
   PDLaw            law[PD_MAX_MATERIALS];
   PetscBool        softening; /* some bond law softens or breaks: bonds carry history */
   /* per-bond history, allocated only when softening */

@@ -18,6 +18,7 @@ typedef enum { PD_STRETCH_EXACT, PD_STRETCH_MODIFIED } PDStretch;
 typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE, PD_CONTROL_ARCLENGTH, PD_CONTROL_AUTO } PDControl;
 typedef enum { PD_ARC_SPHERICAL, PD_ARC_CYLINDRICAL, PD_ARC_CMOD, PD_ARC_DISSIPATION } PDArcType;
 typedef enum { PD_TANGENT_CONSISTENT, PD_TANGENT_SECANT } PDTangent;
+typedef enum { PD_PC_MATRIX_TANGENT, PD_PC_MATRIX_SECANT } PDPCMatrix;
 typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
 typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
 typedef enum { PD_FAILURE_DAMAGE, PD_FAILURE_VELOCITY, PD_FAILURE_FORCE } PDFailureCriterion;
@@ -30,6 +31,7 @@ extern const char *const PDStretchNames[];
 extern const char *const PDControlNames[];
 extern const char *const PDArcTypes[];
 extern const char *const PDTangentNames[];
+extern const char *const PDPCMatrixNames[];
 extern const char *const PDShapes[];
 extern const char *const PDRegionKinds[];
 extern const char *const PDFailureCriteria[];
@@ -102,6 +104,7 @@ typedef struct {
   PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
   PDTangent  tangent;
+  PDPCMatrix pc_matrix;         /* matrix the preconditioner is built from: the tangent, or the secant one */
   PetscInt   limiter_max;       /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
   PetscInt   limiter_stage_its; /* Newton iterations between grants while events are pending */
   PetscInt   limiter_sublevels; /* limiter levels on the softening branch (1: one, s0 to sc) */

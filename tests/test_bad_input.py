@@ -36,6 +36,7 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_halved_its", "-3"], "-pd_arclength_halved_its"),
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_hold", "-1"], "-pd_arclength_hold"),
     ("gregoire_d50_hn", ["-pd_limiter_sublevels", "0"], "-pd_limiter_sublevels"),
+    ("gregoire_d50_hn", ["-pd_pc_matrix", "definite"], "-pd_pc_matrix"),
 ]
 
 

@@ -12,12 +12,14 @@ static const char *base = "-pd_domain 0,0,0,0.04,0.025,0.02 -pd_dx 0.005 -pd_E 3
                           "-pd_region0_box 0,0,0,0,0.025,0.02 -pd_region0_kind support -pd_region0_dofs x,y,z "
                           "-pd_region1_box 0.04,0,0,0.04,0.025,0.02 -pd_region1_kind force -pd_region1_force 1,0,0 -pd_mat_type aij";
 
-static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
+/* err: |J v - FD| / |J v|. With -pd_pc_matrix secant the tangent is assembled next to its preconditioning
+   matrix; nneg counts the bonds with a negative axial stiffness in each (the tangent's, then the secant's). */
+static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2]) {
   PDScene     sc;
   PDLattice   lat;
   PDBonds     bd;
   PDModel     m;
-  Mat         J;
+  Mat         J, P;
   Vec         u, v, w, Jv, Rp, Rm;
   PetscRandom rnd;
   PetscReal   h = 1e-6, nJv, ndiff;
@@ -32,6 +34,8 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
   PetscCall(PDBondsCreate(&sc, &lat, PETSC_TRUE, &bd));
   PetscCall(PDModelCreate(&sc, &lat, &bd, &m));
   PetscCall(PDModelCreateMatrix(&m, &J));
+  P = J;
+  if (m.kp) PetscCall(PDModelCreateMatrix(&m, &P));
   PetscCall(VecDuplicate(m.f_ref, &u));
   PetscCall(VecDuplicate(u, &v));
   PetscCall(VecDuplicate(u, &w));
@@ -61,7 +65,12 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
     }
     PetscCall(PetscFree(s));
   }
-  PetscCall(PDModelJacobian(NULL, u, J, J, &m));
+  PetscCall(PDModelJacobian(NULL, u, J, P, &m));
+  nneg[0] = nneg[1] = 0;
+  for (PetscInt e = 0; m.ka && e < bd.nbonds; e++) {
+    nneg[0] += m.ka[e] < 0;
+    nneg[1] += (m.kp ? m.kp[e] : m.ka[e]) < 0;
+  }
   PetscCall(MatMult(J, v, Jv));
   PetscCall(VecWAXPY(w, h, v, u));
   PetscCall(PDModelResidual(NULL, w, Rp, &m));
@@ -80,6 +89,7 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err) {
   PetscCall(VecDestroy(&Jv));
   PetscCall(VecDestroy(&Rp));
   PetscCall(VecDestroy(&Rm));
+  if (P != J) PetscCall(MatDestroy(&P));
   PetscCall(MatDestroy(&J));
   PetscCall(PDModelDestroy(&m));
   PetscCall(PDBondsDestroy(&bd));
@@ -101,16 +111,27 @@ int main(int argc, char **argv) {
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
     PetscReal err;
+    PetscInt  nneg[2];
     char      what[160];
-    PetscCall(RunCase(cases[k], &err));
+    PetscCall(RunCase(cases[k], &err, nneg));
     PetscCall(PetscSNPrintf(what, sizeof what, "|Jv - FD|/|Jv| < 1e-6: %s", cases[k]));
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, what, err, 1e-6);
   }
   {
     /* the check can fail: the secant is not the derivative of a softening residual */
     PetscReal err;
-    PetscCall(RunCase("-pd_law nonlinear -pd_tangent secant", &err));
+    PetscInt  nneg[2];
+    PetscCall(RunCase("-pd_law nonlinear -pd_tangent secant", &err, nneg));
     Check(err > 1e-3 ? PETSC_TRUE : PETSC_FALSE, "secant tangent in softening is detected as inexact (> 1e-3)", err, 1e-3);
+  }
+  {
+    /* a secant preconditioning matrix leaves the Newton matrix exact and has no softening slope left */
+    PetscReal err;
+    PetscInt  nneg[2];
+    PetscCall(RunCase("-pd_law nonlinear -pd_pc_matrix secant", &err, nneg));
+    Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "-pd_pc_matrix secant: the tangent still matches FD (< 1e-6)", err, 1e-6);
+    Check(nneg[0] > 0 ? PETSC_TRUE : PETSC_FALSE, "the softening state has bonds of negative tangent stiffness", (PetscReal)nneg[0], 1);
+    Check(nneg[1] == 0 ? PETSC_TRUE : PETSC_FALSE, "the secant preconditioning matrix has none", (PetscReal)nneg[1], 0);
   }
   {
     const int rc = CheckSummary();

@@ -151,8 +151,10 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4). */
-PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal *ka, PetscReal *kb) {
+/* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4).
+   With kp, also the ka of the preconditioning matrix: a softening slope g' < 0 replaced by the secant g/s,
+   which is positive, so that matrix stays definite where the tangent is not (-pd_pc_matrix secant). */
+PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp) {
   const PDBonds   *bd        = m->bonds;
   const PDLattice *lat       = m->lat;
   const PetscInt   bs        = m->bs;
@@ -166,6 +168,7 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
     BondForce(m, e, s, &g, &gp);
     ka[e] = gp * q - (geometric ? g / L : 0);
     kb[e] = geometric ? g / L : 0;
+    if (kp) kp[e] = gp < 0 && s > 0 ? ka[e] + (g / s - gp) * q : ka[e];
   }
   PetscFunctionReturn(0);
 }

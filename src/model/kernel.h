@@ -3,7 +3,7 @@
 #include "pd_model.h"
 
 PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f);
-PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb);
+PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
 PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);

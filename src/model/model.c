@@ -273,6 +273,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   PetscCall(SetupPatterns(m));
   PetscCall(SetupScale(m));
   if (!m->linear) PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &m->ka, PetscMax(1, bd->nbonds), &m->kb));
+  if (!m->linear && m->softening && sc->pc_matrix == PD_PC_MATRIX_SECANT) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->kp));
   /* history exists only when some law softens: an elastic scene allocates none */
   m->history_bytes = 0;
   if (m->softening) {
@@ -310,6 +311,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->f_work));
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
+  PetscCall(PetscFree(m->kp));
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->thr));
   PetscFunctionReturn(0);
@@ -400,15 +402,21 @@ PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
   if (m->linear && m->jacobian_assemblies > 0) PetscFunctionReturn(0);
   PetscCall(PetscTime(&t0));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  if (m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb));
-  PetscCall(PDModelAssembleRows(m, ul, m->ka, m->kb, P, &m->nregularised));
+  if (m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, J != P ? m->kp : NULL));
+  /* a separate preconditioning matrix is the secant one when asked (-pd_pc_matrix secant), else the tangent */
+  PetscCall(PDModelAssembleRows(m, ul, J != P && m->kp ? m->kp : m->ka, m->kb, P, &m->nregularised));
   if (m->nregularised) PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " dofs without stiffness regularised\n", m->nregularised));
   m->max_regularised = PetscMax(m->max_regularised, m->nregularised);
-  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   if (J != P) {
-    PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+    PetscBool mffd;
+    PetscCall(PetscObjectTypeCompare((PetscObject)J, MATMFFD, &mffd));
+    if (mffd) { /* -snes_mf_operator */
+      PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
+    } else
+      PetscCall(PDModelAssembleRows(m, ul, m->ka, m->kb, J, &m->nregularised));
   }
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   m->jacobian_assemblies++;
   PetscCall(PetscTime(&t1));
   m->t_assembly += t1 - t0;
@@ -479,7 +487,7 @@ PetscErrorCode PDModelTangentApplyAt(PDModel *m, Vec u, Vec x, Vec y, PetscBool 
   PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  if (refresh && m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb));
+  if (refresh && m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, NULL));
   PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &yloc));
   PetscCall(VecGetArrayRead(xloc, &xl));

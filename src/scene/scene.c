@@ -12,6 +12,7 @@ const char *const        PDStretchNames[]    = {"exact", "modified"};
 const char *const        PDControlNames[]    = {"displacement", "force", "arclength", "auto"};
 const char *const        PDArcTypes[]        = {"spherical", "cylindrical", "cmod", "dissipation"};
 const char *const        PDTangentNames[]    = {"consistent", "secant"};
+const char *const        PDPCMatrixNames[]   = {"tangent", "secant"};
 const char *const        PDShapes[]          = {"box", "cylinder"};
 const char *const        PDRegionKinds[]     = {"support", "displacement", "force", "monitor"};
 const char *const        PDFailureCriteria[] = {"damage", "velocity", "force"};
@@ -569,6 +570,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                            "Tangent of softening bonds: consistent (quadratic Newton, indefinite) or secant (positive)", PDTangentNames, 2,
                            &t, NULL));
     sc->tangent = (PDTangent)t;
+    t           = sc->pc_matrix;
+    PetscCall(PDOptionEnum(PetscOptionsObject, "-pd_pc_matrix",
+                           "Matrix the preconditioner is built from: tangent (the Newton matrix) or secant (softening bonds at their "
+                           "secant slope: definite where the tangent is not, after localisation)",
+                           PDPCMatrixNames, 2, &t, NULL));
+    sc->pc_matrix = (PDPCMatrix)t;
   }
   PetscCall(PDOptionReal(PetscOptionsObject, "-pd_lambda_max", "Load factor at which the path ends", &sc->lambda_max, NULL));
   PetscCheck(sc->lambda_max > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_lambda_max: must be positive, got %g", (double)sc->lambda_max);

@@ -30,7 +30,7 @@ typedef struct {
 
 typedef struct {
   PDModel       *m;
-  Mat            J;
+  Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
   KSP            ksp;
   Vec            u, fint, R, q, duI, v, w, dprev, row;
   PDAugmented    aug; /* used for linear constraints unless -pd_arclength_solve bordering */
@@ -78,11 +78,11 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
   PetscInt n;
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelJacobian(NULL, a->u, a->J, a->J, m));
+  PetscCall(PDModelJacobian(NULL, a->u, a->J, a->P, m));
   /* an iterative solve absorbs a lagged factor (rebuilt every third assembly, as under plain control); a
      direct one (preonly) must factor every time */
   PetscCall(KSPSetReusePreconditioner(a->ksp, a->direct || a->assemblies++ % 3 == 0 ? PETSC_FALSE : PETSC_TRUE));
-  PetscCall(KSPSetOperators(a->ksp, a->J, a->J));
+  PetscCall(KSPSetOperators(a->ksp, a->J, a->P));
   PetscCall(PDModelTangentApply(m, a->u, m->u_ref, a->q));
   PetscCall(VecAXPY(a->q, -1, m->f_ref));
   PetscCall(VecPointwiseMult(a->w, a->q, m->fixed));
@@ -474,6 +474,8 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   a.dlam      = sc->lambda_max / sc->steps;
   a.peak_sign = 1;
   PetscCall(PDModelCreateMatrix(m, &a.J));
+  a.P = a.J;
+  if (m->kp) PetscCall(PDModelCreateMatrix(m, &a.P));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
   {
@@ -596,6 +598,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   }
   if (a.augmented) PetscCall(PDAugmentedDestroy(&a.aug));
   PetscCall(KSPDestroy(&a.ksp));
+  if (a.P != a.J) PetscCall(MatDestroy(&a.P));
   PetscCall(MatDestroy(&a.J));
   {
     Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row, &u_prev};

@@ -127,7 +127,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
-  Mat            J;
+  Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
   Vec            u, r;
   PDPath         path;
   PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps;
@@ -135,12 +135,14 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
+  P = J;
+  if (m->kp) PetscCall(PDModelCreateMatrix(m, &P));
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &r));
   PetscCall(PDPathCreate(m, &path));
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
-  PetscCall(SNESSetJacobian(snes, J, J, PDModelJacobian, m));
+  PetscCall(SNESSetJacobian(snes, J, P, PDModelJacobian, m));
   PetscCall(ConfigureSolver(m, snes));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
@@ -212,6 +214,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "%s/%s/%s", st, kt, pt));
   }
   PetscCall(SNESDestroy(&snes));
+  if (P != J) PetscCall(MatDestroy(&P));
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&r));
