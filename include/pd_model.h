@@ -77,6 +77,7 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
+PetscErrorCode PDModelStretchesAt(PDModel *, Vec u, PetscReal *s);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);
 PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscInt *nkink);

@@ -100,6 +100,7 @@ typedef struct {
   PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
   PetscInt   arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
   PetscInt   arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
+  PetscReal  arc_implex;     /* > 0: IMPL-EX (damage extrapolated, secant steps), the error per step aimed at; 0: implicit */
   PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
   PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */

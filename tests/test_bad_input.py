@@ -37,6 +37,9 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_hold", "-1"], "-pd_arclength_hold"),
     ("gregoire_d50_hn", ["-pd_limiter_sublevels", "0"], "-pd_limiter_sublevels"),
     ("gregoire_d50_hn", ["-pd_pc_matrix", "definite"], "-pd_pc_matrix"),
+    ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_implex", "1.5"], "-pd_arclength_implex"),
+    ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_type", "dissipation", "-pd_arclength_implex", "0.01"],
+     "-pd_arclength_implex"),
 ]
 
 

@@ -537,6 +537,16 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                             "Path following: accepted steps after a cut during which the arc length does not grow", &sc->arc_hold, NULL));
       PetscCheck(sc->arc_hold >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_arclength_hold: must be non-negative, got %" PetscInt_FMT,
                  sc->arc_hold);
+      PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_implex",
+                             "Path following with IMPL-EX: each step uses bond damage extrapolated from the last two steps and "
+                             "solves a secant problem (no softening kink, a definite matrix); the value is the largest extrapolation "
+                             "error per step, as a fraction of the softening range sc - s0, the arc length adapts to; 0: implicit",
+                             &sc->arc_implex, NULL));
+      PetscCheck(sc->arc_implex >= 0 && sc->arc_implex < 1, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_arclength_implex: must lie in [0, 1), got %g", (double)sc->arc_implex);
+      PetscCheck(sc->arc_implex == 0 || sc->arc_type != PD_ARC_DISSIPATION, comm, PETSC_ERR_USER_INPUT,
+                 "Option -pd_arclength_implex: a secant step dissipates nothing the dissipation constraint can measure; use cmod, "
+                 "cylindrical or spherical");
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_initial",
                              "First arc length in the constraint's units (m, or J for dissipation); 0: what the first load step gives",
                              &sc->arc_initial, NULL));

@@ -16,9 +16,12 @@
    the dissipation constraint, which is singular while nothing dissipates) the region's plain control
    runs until the first bond softens. Newton cycling at the kink of softened bonds (loading beyond their
    largest stretch, secant below it) is settled by freezing their branches (see Step); -pd_unload_at
-   turns the path for unloading and reloading (LoadReversal). */
+   turns the path for unloading and reloading (LoadReversal). -pd_arclength_implex replaces the implicit
+   history of a step by one extrapolated from the last two (ImplexExtrapolate), where Newton cannot settle
+   which bonds load and which unload. */
 #include "path.h"
 #include "augmented.h"
+#include "../model/kernel.h"
 
 /* Load reversal (-pd_unload_at): where a path is, given the accepted step's row. */
 typedef struct {
@@ -43,9 +46,12 @@ typedef struct {
   PetscInt       assemblies; /* for the preconditioner lag */
   PetscBool      direct;     /* KSPPREONLY: no lag */
   unsigned char *branch;     /* per-bond branches, frozen once Newton cycles at history kinks */
-  Reversal       rev;        /* load reversal; while unloading (phase 1) the cmod gauge closes */
-  PetscBool      turn;       /* the next predictor goes against the last step (load reversal) */
-  const char    *why;        /* why the last step failed */
+  /* IMPL-EX (-pd_arclength_implex): bond histories at the last two accepted steps, the one a step uses */
+  PetscReal  *kx_n, *kx_prev;
+  PetscReal   len_prev; /* the last accepted step's length in the units of the next one */
+  Reversal    rev;      /* load reversal; while unloading (phase 1) the cmod gauge closes */
+  PetscBool   turn;     /* the next predictor goes against the last step (load reversal) */
+  const char *why;      /* why the last step failed */
   /* between steps */
   PetscInt  type;            /* constraint, or ARC_LOAD: plain control (the first step, and under auto until softening) */
   PetscReal dl, dl0, dlam;   /* arc length, the first one, load-factor increment under plain control */
@@ -212,6 +218,44 @@ static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* IMPL-EX (Oliver, Huespe and Cante 2008): a step uses the bond histories extrapolated linearly from the
+   last two accepted steps, kappa~ = kappa_n + r (kappa_n - kappa_n-1) with r the ratio of the step lengths,
+   every bond on its secant at kappa~. The step's equations then have no softening branch and no kink at
+   the history (only the switch to compression), and their matrix is the secant one, definite: Newton
+   takes one or two iterations and cannot cycle. The real history follows the solution when the step is
+   accepted; how far it lands from the extrapolation is the step's error, which sets the next arc length. */
+static PetscErrorCode ImplexExtrapolate(Arc *a, PetscReal r) {
+  PDModel *m = a->m;
+
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+    m->kappa[e]  = a->kx_n[e] + r * (a->kx_n[e] - a->kx_prev[e]);
+    a->branch[e] = PD_BRANCH_SECANT;
+  }
+  m->branch = a->branch;
+  PetscFunctionReturn(0);
+}
+
+/* The error of an IMPL-EX step that reached u: the largest difference between the damage of the real
+   history, max(kappa_n, s(u)), and of the extrapolated one the step used (the softening laws lose most of
+   their force just past s0, so a difference in stretch would say little). */
+static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
+  PDModel  *m    = a->m;
+  PetscReal mine = 0, dd;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelStretchesAt(m, a->u, m->stretch));
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+    const PDLaw     *law = &m->law[m->bonds->material[e]];
+    const PDLawBond *t   = PDModelBondThresholds(m, e, law);
+    const PetscReal  k   = PetscMax(a->kx_n[e], m->stretch[e]);
+    if (law->kind == PD_LAW_ELASTIC || k == m->kappa[e]) continue;
+    mine = PetscMax(mine, PetscAbsReal(PDLawDamage(law, t, k, &dd) - PDLawDamage(law, t, m->kappa[e], &dd)));
+  }
+  PetscCall(MPIU_Allreduce(&mine, err, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
+  PetscFunctionReturn(0);
+}
+
 /* One step of length dl: predictor along v, then bordered Newton corrections until equilibrium holds,
    the constraint is met and the limiter has no event left. */
 static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscInt *max_events, PetscBool *ok) {
@@ -225,6 +269,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   *ok     = PETSC_FALSE;
   a->its  = 0;
   a->lits = 0;
+  if (a->kx_n) PetscCall(ImplexExtrapolate(a, a->len_prev > 0 ? dl / a->len_prev : 0));
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam = p->lambda_n;
   PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
@@ -263,7 +308,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     tol = m->scene->arc_rtol * fnorm + 1e-12 * m->force_scale;
     PetscCall(PetscInfo(NULL, "arclength iteration %" PetscInt_FMT ": |R| %g, tolerance %g, lambda %.10g\n", k, (double)rnorm, (double)tol,
                         (double)a->lam));
-    if (rnorm <= tol && m->branch) {
+    if (rnorm <= tol && m->branch && !a->kx_n) {
       /* equilibrium on frozen branches: it holds for the real law once every bond is on the side of its
          history its branch assumes; otherwise the bonds on the wrong side change branch and Newton goes on */
       PetscInt  nflipped, nkink;
@@ -286,6 +331,10 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
         PetscCall(Residual(a, &rnorm, &fnorm));
       } else
         rnorm = rfree;
+    }
+    if (rnorm <= tol && a->kx_n) { /* IMPL-EX: the secant step is the step; no limiter */
+      *ok = PETSC_TRUE;
+      PetscFunctionReturn(0);
     }
     if (rnorm <= tol) {
       PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));
@@ -484,6 +533,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   }
   PetscCall(PDPathCreate(m, &path));
   if (m->softening) PetscCall(PetscMalloc1(PetscMax(1, m->bonds->nbonds), &a.branch));
+  if (m->softening && sc->arc_implex > 0) PetscCall(PetscMalloc2(m->bonds->nbonds, &a.kx_n, m->bonds->nbonds, &a.kx_prev));
   PetscCall(KSPCreate(comm, &a.ksp));
   PetscCall(PDSolverConfigureKSP(m, a.ksp));
   PetscCall(KSPSetTolerances(a.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
@@ -495,12 +545,20 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       sc->arc_augmented && !a.direct && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
   if (a.augmented) PetscCall(PDAugmentedCreate(a.J, a.ksp, &a.aug));
   if (sc->restart[0]) PetscCall(ReadCheckpoint(&a, &path, rec));
+  if (a.kx_n) {
+    /* no limiter: every threshold is open, as on the explicit path. A restart extrapolates from one step */
+    for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+      m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
+      a.kx_n[e] = a.kx_prev[e] = m->kappa[e];
+    }
+  }
   PackState(&a, &path);
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   while (path.step < maxsteps) {
     PDCurveRow row;
     PetscInt   max_events = 0;
+    PetscReal  implex_err = 0;
     PetscBool  ok, stop = PETSC_FALSE;
     PetscReal  len = a.type == ARC_LOAD ? PetscMin(a.dlam, sc->lambda_max - path.lambda_n) : a.dl;
 
@@ -513,6 +571,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       PetscCall(PetscInfo(NULL, "arclength: step %" PetscInt_FMT " cut at %s %g after %" PetscInt_FMT " Newton iterations: %s\n",
                           path.step + 1, a.type == ARC_LOAD ? "increment" : "arc length", (double)len, a.its, a.why));
       PetscCall(PDModelRestoreLevels(m));
+      if (a.kx_n) PetscCall(PetscArraycpy(m->kappa, a.kx_n, m->bonds->nbonds));
       if (a.type == ARC_LOAD ? a.dlam * 0.5 < sc->dlambda_min : a.dl * 0.5 < 1e-6 * a.dl0) {
         rec->converged = PETSC_FALSE;
         PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g: %s %g at its floor (%s)",
@@ -528,11 +587,25 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       }
       continue;
     }
+    if (a.kx_n) {
+      PetscCall(ImplexError(&a, &implex_err));
+      PetscCall(PetscInfo(NULL, "implex: step %" PetscInt_FMT " damage extrapolated to within %g\n", path.step + 1, (double)implex_err));
+      PetscCall(PetscArraycpy(m->kappa, a.kx_n, m->bonds->nbonds)); /* the real history follows from the step's start */
+      if (a.type != ARC_LOAD && implex_err > 2 * sc->arc_implex && a.dl * 0.5 >= 1e-6 * a.dl0) {
+        a.dl *= PetscMax(0.25, PetscSqrtReal(sc->arc_implex / implex_err));
+        a.hold = sc->arc_hold;
+        continue;
+      }
+    }
     if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
     d_prev   = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */
     PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
+    if (a.kx_n) {
+      PetscCall(PetscArraycpy(a.kx_prev, a.kx_n, m->bonds->nbonds));
+      PetscCall(PetscArraycpy(a.kx_n, m->kappa, m->bonds->nbonds));
+    }
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, max_events);
     PetscCall(VecWAXPY(a.dprev, -1, u_prev, path.u_n));
     a.have_prev = PETSC_TRUE;
@@ -549,6 +622,9 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     } else if (a.type != ARC_LOAD) { /* aim at arc_target_its Newton iterations, within [dl0 / 1000, growth dl0] */
       const PetscReal cap = sc->arc_growth;
       PetscReal       f   = PetscSqrtReal((PetscReal)sc->arc_target_its / PetscMax(1, a.its));
+      /* IMPL-EX aims at its extrapolation error instead, which is second order in the step where histories
+         change smoothly */
+      if (a.kx_n) f = implex_err > 0 ? PetscSqrtReal(sc->arc_implex / implex_err) : 2;
       if (a.hold > 0) { /* after a cut: no growth for -pd_arclength_hold steps */
         f = PetscMin(f, 1);
         a.hold--;
@@ -556,6 +632,12 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       a.dl = PetscMax(1e-3 * a.dl0, PetscMin(cap * a.dl0, a.dl * PetscMax(0.5, PetscMin(2, f))));
     } else if (a.its <= 3)
       a.dlam = PetscMin(2 * a.dlam, sc->dlambda_max);
+    if (a.kx_n) { /* the step just made, measured as the next one will be, for the extrapolation ratio */
+      if (a.type == ARC_LOAD)
+        a.len_prev = path.lambda_n - lam_prev;
+      else
+        PetscCall(StepLength(&a, &path, u_prev, lam_prev, &row, d_prev, a.type, &a.len_prev));
+    }
     if (PetscAbsReal(row.load) > a.peak) {
       a.peak      = PetscAbsReal(row.load);
       a.peak_sign = row.load < 0 ? -1 : 1;
@@ -606,5 +688,6 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   }
   PetscCall(PDPathDestroy(&path));
   PetscCall(PetscFree(a.branch));
+  PetscCall(PetscFree2(a.kx_n, a.kx_prev));
   PetscFunctionReturn(0);
 }

@@ -28,7 +28,7 @@ static int CompareIds(const void *pa, const void *pb) {
 }
 
 /* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
-static PetscErrorCode StretchesAt(PDModel *m, Vec u, PetscReal *s) {
+PetscErrorCode PDModelStretchesAt(PDModel *m, Vec u, PetscReal *s) {
   const PetscScalar *ul;
   Vec                loc;
 
@@ -58,7 +58,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   *ncandidates = *granted = 0;
   if (!m->softening) PetscFunctionReturn(0);
   s = m->stretch;
-  PetscCall(StretchesAt(m, u, s));
+  PetscCall(PDModelStretchesAt(m, u, s));
   /* criticality s / threshold, >= 1 for a held bond, kept in place of the stretch. A bond passing from
      one part of its softening branch to the next (-pd_limiter_sublevels) neither enters softening nor
      breaks: it goes on at once, one part per stage, and only the other events are counted and capped */
@@ -162,7 +162,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   PetscFunctionBeginUser;
   if (!m->softening) PetscFunctionReturn(0);
   s = m->stretch;
-  PetscCall(StretchesAt(m, u, s));
+  PetscCall(PDModelStretchesAt(m, u, s));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscReal cap = Threshold(m, e);
     m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
@@ -178,7 +178,7 @@ PetscErrorCode PDModelFreezeBranches(PDModel *m, Vec u, unsigned char *branch, P
 
   PetscFunctionBeginUser;
   m->branch = NULL;
-  PetscCall(StretchesAt(m, u, m->stretch));
+  PetscCall(PDModelStretchesAt(m, u, m->stretch));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     branch[e] = PD_BRANCH_FREE;
     if (!Softened(m, e)) continue;
@@ -201,7 +201,7 @@ PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped, PetscI
 
   PetscFunctionBeginUser;
   PetscCheck(branch, m->lat->comm, PETSC_ERR_ORDER, "no frozen branches to flip");
-  PetscCall(StretchesAt(m, u, m->stretch));
+  PetscCall(PDModelStretchesAt(m, u, m->stretch));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     const PetscReal s = m->stretch[e], k = m->kappa[e];
     const PDBranch  b = (PDBranch)(branch[e] & PD_BRANCH_MASK);
