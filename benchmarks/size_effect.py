@@ -12,7 +12,7 @@ the checkpoints of the selected runs that were interrupted, one leg of at most -
 stored result then covers all legs (CPU and wall time summed).
 
 Usage: benchmarks/size_effect.py [--jobs 2] [--dx 5e-3,10e-3] [--sizes 50,100,200,400] [--timeout 7200]
-       [--resume] [--report]     (--report only rewrites the tables and plot)
+       [--dim 3|2] [--implex TOL] [--resume] [--report]     (--report only rewrites the tables and plot)
 """
 import argparse
 import concurrent.futures
@@ -48,13 +48,16 @@ def scene_args_2d(D, kind, dx):
     return args
 
 
-def scene_args(D, kind, dx):
+def scene_args(D, kind, dx, implex=0):
     """The shipped scene with path following to 10 % of the peak; the D = 50 mm scenes stop at CMOD 0.2 mm
     under displacement control, so they are switched over, and the unnotched one gets the strength scatter
-    the generated unnotched scenes carry."""
+    the generated unnotched scenes carry. implex > 0: IMPL-EX steps with that damage error per step."""
     args = ["-options_file", os.path.join(ROOT, "options", "gregoire_d%d_%s.opts" % (D, kind)), "-pd_dx", str(dx), "-pd_control",
             "arclength", "-pd_stop_fraction", "0.1"]
-    if D >= 200:
+    if implex > 0:
+        # IMPL-EX has no kink for Newton to cycle on: none of the implicit path's remedies below are needed
+        args += ["-pd_arclength_implex", str(implex)]
+    elif D >= 200:
         # where damage localises in the large beams Newton cycles across bond kinks; cutting such steps early
         # and not growing the arc length right after a cut took the D = 200 mm half-notched beam over its
         # peak, where the defaults crept along (docs/arclength.md, "Where this is not enough"). Under CMOD
@@ -77,14 +80,21 @@ def scene_args(D, kind, dx):
     return args
 
 
-def key(D, kind, dx, dim=3):
-    return "D=%d/%s/dx=%g%s" % (D, kind, dx, "/2d" if dim == 2 else "")
+def key(D, kind, dx, dim=3, implex=0):
+    return "D=%d/%s/dx=%g%s%s" % (D, kind, dx, "/2d" if dim == 2 else "", "/implex=%g" % implex if implex > 0 else "")
 
 
 def parse_key(k):
-    """The inverse of key(): (D in mm, kind, dx in m, dim)."""
+    """The inverse of key(): (D in mm, kind, dx in m, dim, IMPL-EX error per step or 0)."""
     p = k.split("/")
-    return int(p[0][2:]), p[1], float(p[2][3:]), 2 if len(p) > 3 else 3
+    implex = [float(x[7:]) for x in p[3:] if x.startswith("implex=")]
+    return int(p[0][2:]), p[1], float(p[2][3:]), 2 if "2d" in p[3:] else 3, implex[0] if implex else 0
+
+
+def method(k):
+    """How a run was made, for tables and legends: dimension, dx in mm, IMPL-EX."""
+    D, kind, dx, d, implex = parse_key(k)
+    return "%dD %g%s" % (d, 1e3 * dx, " IMPL-EX %g" % implex if implex else "")
 
 
 def portable(command):
@@ -103,11 +113,13 @@ def resumable(r):
     return r.get("status", "").startswith(("interrupted", "stopped after")) and os.path.exists(r.get("checkpoint", ""))
 
 
-def run_one(D, kind, dx, timeout, dim=3, prev=None):
+def run_one(D, kind, dx, timeout, dim=3, prev=None, implex=0):
     """One leg of a run: from the start, or from prev's checkpoint (prev: the stored result of the legs so far)."""
     os.makedirs(WORK, exist_ok=True)
-    out = tempfile.mkdtemp(prefix=key(D, kind, dx, dim).replace("/", "_").replace("=", "") + "_", dir=WORK)
-    scene = scene_args(D, kind, dx) if dim == 3 else scene_args_2d(D, kind, dx)
+    out = tempfile.mkdtemp(prefix=key(D, kind, dx, dim, implex).replace("/", "_").replace("=", "") + "_", dir=WORK)
+    scene = scene_args(D, kind, dx, implex) if dim == 3 else scene_args_2d(D, kind, dx)
+    if dim == 2 and implex > 0:
+        scene += ["-pd_arclength_implex", str(implex)]
     # the progress display (one entry per step, on stderr) goes to log.txt, to follow a long run
     cmd = [EXE] + scene + ["-pd_checkpoint_every", str(CHECKPOINT_EVERY)]
     if prev:
@@ -160,14 +172,13 @@ def report(res):
              "| D (mm) | beam | model, dx (mm) | nodes | bonds | peak (N) | sigma_N (MPa) | end (of peak) | load point back (mm) | steps | Newton | KSP | "
              "wall (s) | CPU (s) | memory (MB) | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for k in keys:
-        D, kind, dx, d = parse_key(k)
-        dim = "%dD" % d
+        D, kind = parse_key(k)[:2]
         r = res[k]
         if "peak" not in r:
-            lines.append("| %d | %s | %s %g | | | | | | | | | | %.0f | | | %s |" % (D, KINDS[kind], dim, 1e3 * dx, r.get("wall", 0), r["status"]))
+            lines.append("| %d | %s | %s | | | | | | | | | | %.0f | | | %s |" % (D, KINDS[kind], method(k), r.get("wall", 0), r["status"]))
             continue
-        lines.append("| %d | %s | %s %g | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s | %s |" % (
-            D, KINDS[kind], dim, 1e3 * dx, r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
+        lines.append("| %d | %s | %s | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s | %s |" % (
+            D, KINDS[kind], method(k), r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
             1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["cpu"] if "cpu" in r else "",
             "%.0f" % r["memory_MB"] if r.get("memory_MB") else "",
             r["status"][:60] + (" (%d legs)" % r["legs"] if r.get("legs", 1) > 1 else "")))
@@ -178,9 +189,9 @@ def report(res):
     series = {}
     for k in keys:
         if "peak" in res[k] and res[k]["final_fraction"] < 0.95:  # an interrupted run counts once past its peak
-            D, kind, dx, d = parse_key(k)
-            series.setdefault((kind, "dx=%g" % dx, "%dd" % d), []).append((D, nominal_strength(D, res[k]["peak"])))
-    for (kind, dxs, dim), pts in sorted(series.items()):
+            D, kind = parse_key(k)[:2]
+            series.setdefault((kind, method(k)), []).append((D, nominal_strength(D, res[k]["peak"])))
+    for (kind, how), pts in sorted(series.items()):
         pts.sort()
         if len(pts) < 3:
             continue
@@ -190,7 +201,7 @@ def report(res):
         a = my - b * mx
         fit = "%.2f | %.0f" % (a ** -0.5, a / b) if a > 0 and b > 0 else "- | -"
         ratios = ", ".join("%.2f" % (q[1] / p[1]) for p, q in zip(pts, pts[1:]) if q[0] == 2 * p[0])
-        lines.append("| %s, %s, %s | %s | %s | %s |" % (KINDS[kind], dxs, dim, ", ".join(str(p[0]) for p in pts), fit, ratios))
+        lines.append("| %s, %s | %s | %s | %s |" % (KINDS[kind], how, ", ".join(str(p[0]) for p in pts), fit, ratios))
     with open(os.path.join(OUT, "size_effect_table.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     fig, ax = plt.subplots(1, 4, figsize=(20, 4.5))
@@ -199,15 +210,15 @@ def report(res):
             r = res[k]
             if parse_key(k)[1] != kind or "load" not in r:
                 continue
-            ax[i].plot([1e3 * c for c in r["cmod"]], [l / 1e3 for l in r["load"]], label="D = %d, dx = %g mm" % (parse_key(k)[0], 1e3 * parse_key(k)[2]))
+            ax[i].plot([1e3 * c for c in r["cmod"]], [l / 1e3 for l in r["load"]], label="D = %d, %s" % (parse_key(k)[0], method(k)))
         ax[i].set(title=KINDS[kind], xlabel="CMOD (mm)", ylabel="load (kN)")
         ax[i].legend(fontsize=7)
     for kind, mk in zip(KINDS, "o^s"):
-        pts = sorted((parse_key(k)[0], nominal_strength(parse_key(k)[0], res[k]["peak"]), "dx=%g" % parse_key(k)[2])
+        pts = sorted((parse_key(k)[0], nominal_strength(parse_key(k)[0], res[k]["peak"]), method(k))
                      for k in keys if parse_key(k)[1] == kind and "peak" in res[k] and res[k]["final_fraction"] < 0.95)
-        for dxs in sorted(set(p[2] for p in pts)):
-            q = [p for p in pts if p[2] == dxs]
-            ax[3].loglog([p[0] for p in q], [p[1] for p in q], mk + ("-" if dxs == "dx=0.005" else "--"), label="%s, %s" % (KINDS[kind], dxs))
+        for how in sorted(set(p[2] for p in pts)):
+            q = [p for p in pts if p[2] == how]
+            ax[3].loglog([p[0] for p in q], [p[1] for p in q], mk + ("-" if " 5" in how else "--"), label="%s, %s" % (KINDS[kind], how))
     ax[3].set(title="nominal strength", xlabel="D (mm)", ylabel="sigma_N (MPa)")
     ax[3].legend(fontsize=7)
     fig.tight_layout()
@@ -222,6 +233,7 @@ def main():
     ap.add_argument("--kinds", default="un,fn,hn")
     ap.add_argument("--timeout", type=float, default=7200)
     ap.add_argument("--dim", type=int, default=3, help="3, or 2 for plane-stress versions of the beams")
+    ap.add_argument("--implex", type=float, default=0, help="IMPL-EX steps with this damage error per step (0: implicit)")
     ap.add_argument("--redo", default="", help="comma-separated result keys to run again")
     ap.add_argument("--resume", action="store_true", help="go on with the selected runs that stopped on their time limit")
     ap.add_argument("--report", action="store_true")
@@ -231,13 +243,13 @@ def main():
     done = set(res) - set(a.redo.split(","))
     if not a.report:
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
-                if key(D, kind, float(dx), a.dim) not in done or (a.resume and resumable(res[key(D, kind, float(dx), a.dim)]))]
+                if key(D, kind, float(dx), a.dim, a.implex) not in done or (a.resume and resumable(res[key(D, kind, float(dx), a.dim, a.implex)]))]
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim, res[key(D, kind, dx, a.dim)] if key(D, kind, dx, a.dim) in done else None):
+            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim, res[key(D, kind, dx, a.dim, a.implex)] if key(D, kind, dx, a.dim, a.implex) in done else None, a.implex):
                     (D, kind, dx) for D, kind, dx in todo}
             for f in concurrent.futures.as_completed(futs):
                 D, kind, dx = futs[f]
-                k = key(D, kind, dx, a.dim)
+                k = key(D, kind, dx, a.dim, a.implex)
                 res = store_result(RESULTS, k, f.result())
                 print(k, res[k].get("status"), "%.0f s" % res[k].get("wall", 0), flush=True)
                 report(res)
