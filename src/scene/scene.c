@@ -539,8 +539,8 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
                  sc->arc_hold);
       PetscCall(PDOptionReal(PetscOptionsObject, "-pd_arclength_implex",
                              "Path following with IMPL-EX: each step uses bond damage extrapolated from the last two steps and "
-                             "solves a secant problem (no softening kink, a definite matrix); the value is the largest extrapolation "
-                             "error per step, as a fraction of the softening range sc - s0, the arc length adapts to; 0: implicit",
+                             "solves a secant problem (no softening kink, a definite matrix); the value is the largest difference in "
+                             "bond damage between real and extrapolated history per step, which the arc length adapts to; 0: implicit",
                              &sc->arc_implex, NULL));
       PetscCheck(sc->arc_implex >= 0 && sc->arc_implex < 1, comm, PETSC_ERR_USER_INPUT,
                  "Option -pd_arclength_implex: must lie in [0, 1), got %g", (double)sc->arc_implex);
