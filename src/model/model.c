@@ -273,7 +273,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   PetscCall(SetupPatterns(m));
   PetscCall(SetupScale(m));
   if (!m->linear) PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &m->ka, PetscMax(1, bd->nbonds), &m->kb));
-  if (!m->linear && m->softening && sc->pc_matrix == PD_PC_MATRIX_SECANT) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->kp));
+  /* IMPL-EX's matrix is the secant one already: no second matrix for it */
+  if (!m->linear && m->softening && sc->pc_matrix == PD_PC_MATRIX_SECANT && sc->arc_implex == 0)
+    PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->kp));
   /* history exists only when some law softens: an elastic scene allocates none */
   m->history_bytes = 0;
   if (m->softening) {
@@ -340,6 +342,18 @@ PetscErrorCode PDModelRestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
   PetscFunctionBeginUser;
   PetscCall(VecRestoreArrayRead(*loc, ul));
   PetscCall(VecGhostRestoreLocalForm(m->u_local, loc));
+  PetscFunctionReturn(0);
+}
+
+/* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
+PetscErrorCode PDModelStretchesAt(PDModel *m, Vec u, PetscReal *s) {
+  const PetscScalar *ul;
+  Vec                loc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
+  PetscCall(PDModelStretches(m, ul, s));
+  PetscCall(PDModelRestoreLocal(m, &ul, &loc));
   PetscFunctionReturn(0);
 }
 

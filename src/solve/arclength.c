@@ -534,7 +534,8 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   }
   PetscCall(PDPathCreate(m, &path));
   if (m->softening) PetscCall(PetscMalloc1(PetscMax(1, m->bonds->nbonds), &a.branch));
-  if (m->softening && sc->arc_implex > 0) PetscCall(PetscMalloc2(m->bonds->nbonds, &a.kx_n, m->bonds->nbonds, &a.kx_prev));
+  if (m->softening && sc->arc_implex > 0) PetscCall(PetscMalloc1(m->bonds->nbonds, &a.kx_n));
+  if (a.kx_n) PetscCall(PetscMalloc1(m->bonds->nbonds, &a.kx_prev));
   PetscCall(KSPCreate(comm, &a.ksp));
   PetscCall(PDSolverConfigureKSP(m, a.ksp));
   PetscCall(KSPSetTolerances(a.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
@@ -608,8 +609,10 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
     lam_prev = path.lambda_n;
     d_prev   = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */
     PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
-    if (a.kx_n) {
-      PetscCall(PetscArraycpy(a.kx_prev, a.kx_n, m->bonds->nbonds));
+    if (a.kx_n) { /* the histories move on by a step: the oldest buffer takes the new one */
+      PetscReal *t = a.kx_prev;
+      a.kx_prev    = a.kx_n;
+      a.kx_n       = t;
       PetscCall(PetscArraycpy(a.kx_n, m->kappa, m->bonds->nbonds));
     }
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, max_events);
@@ -694,6 +697,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   }
   PetscCall(PDPathDestroy(&path));
   PetscCall(PetscFree(a.branch));
-  PetscCall(PetscFree2(a.kx_n, a.kx_prev));
+  PetscCall(PetscFree(a.kx_n));
+  PetscCall(PetscFree(a.kx_prev));
   PetscFunctionReturn(0);
 }

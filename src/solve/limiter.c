@@ -27,18 +27,6 @@ static int CompareIds(const void *pa, const void *pb) {
   return a < b ? -1 : (a > b ? 1 : 0);
 }
 
-/* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
-PetscErrorCode PDModelStretchesAt(PDModel *m, Vec u, PetscReal *s) {
-  const PetscScalar *ul;
-  Vec                loc;
-
-  PetscFunctionBeginUser;
-  PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
-  PetscCall(PDModelStretches(m, ul, s));
-  PetscCall(PDModelRestoreLocal(m, &ul, &loc));
-  PetscFunctionReturn(0);
-}
-
 static PetscReal Threshold(const PDModel *m, PetscInt e) {
   const PDLaw *law = &m->law[m->bonds->material[e]];
   return PDLawNextThreshold(law, PDModelBondThresholds(m, e, law), m->level[e]);
