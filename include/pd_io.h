@@ -55,9 +55,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm, const PDModel *, const PDRecord *);
 PetscErrorCode PDCurvePlotWrite(MPI_Comm, const PDScene *, const PDRecord *);
 PetscErrorCode PDProgress(MPI_Comm, const PDScene *, const PDCurveRow *, PetscBool last);
 PetscErrorCode PDFileCommit(MPI_Comm, const char *dir, const char *name);
-/* checkpoint.h5: a path's state at an accepted step (-pd_checkpoint_every, -pd_restart) */
+/* checkpoint.h5: a path's state at an accepted step (-pd_checkpoint_every, -pd_restart); kappa_prev: the
+   bond history a step earlier, kept where the driver extrapolates histories (NULL: none) */
 PetscErrorCode PDCheckpointValidate(const PDModel *, const char *path);
 PetscErrorCode PDCheckpointWrite(PDModel *, PDRecord *, PetscInt nvec, const Vec vec[], const char *const vec_name[], PetscInt nreal,
-                                 const char *const real_name[], const PetscReal real[]);
+                                 const char *const real_name[], const PetscReal real[], const PetscReal *kappa_prev);
 PetscErrorCode PDCheckpointRead(PDModel *, PDRecord *, const char *path, PetscInt nvec, Vec vec[], const char *const vec_name[],
-                                PetscInt nreal, const char *const real_name[], PetscReal real[]);
+                                PetscInt nreal, const char *const real_name[], PetscReal real[], PetscReal *kappa_prev);

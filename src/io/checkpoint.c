@@ -5,7 +5,8 @@
    What it holds, through PETSc's HDF5 viewer:
    - the path vectors the driver names (displacement, internal force, last step), in global node order;
    - the bond history, kappa and the limiter level, laid out per owned node and per neighbour in global
-     id order (the stiffness rows). That layout depends on the lattice only, not on the partition, so a
+     id order (the stiffness rows), and where the driver keeps one (IMPL-EX) the history a step earlier,
+     which its next extrapolation needs. That layout depends on the lattice only, not on the partition, so a
      checkpoint written with one rank count is read with any other;
    - the curve rows and run totals, so curve.csv and summary.json cover the whole path;
    - the driver's scalars as named attributes;
@@ -145,38 +146,59 @@ static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode WriteHistory(const PDModel *m, PetscViewer v) {
+static PetscErrorCode WriteHistory(const PDModel *m, const PetscReal *kappa_prev, PetscViewer v) {
   const PDBonds *bd = m->bonds;
-  Vec            K, L;
-  PetscScalar   *k, *l;
+  Vec            K, L, Kp   = NULL;
+  PetscScalar   *k, *l, *kp = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(HistoryVecs(m, &K, &L));
+  if (kappa_prev) {
+    PetscCall(VecDuplicate(K, &Kp));
+    PetscCall(PetscObjectSetName((PetscObject)Kp, "kappa_previous"));
+    PetscCall(VecGetArray(Kp, &kp));
+  }
   PetscCall(VecGetArray(K, &k));
   PetscCall(VecGetArray(L, &l));
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
     k[p] = m->kappa[bd->inc_bond[p]];
     l[p] = m->level_n[bd->inc_bond[p]];
+    if (kp) kp[p] = kappa_prev[bd->inc_bond[p]];
   }
   PetscCall(VecRestoreArray(K, &k));
   PetscCall(VecRestoreArray(L, &l));
   PetscCall(VecView(K, v));
   PetscCall(VecView(L, v));
+  if (Kp) {
+    PetscCall(VecRestoreArray(Kp, &kp));
+    PetscCall(VecView(Kp, v));
+  }
   PetscCall(VecDestroy(&K));
   PetscCall(VecDestroy(&L));
+  PetscCall(VecDestroy(&Kp));
   PetscFunctionReturn(0);
 }
 
-/* Every bond has an owned end, so every bond is read; a bond with both ends owned is read twice, equal. */
-static PetscErrorCode ReadHistory(PDModel *m, PetscViewer v) {
+/* Every bond has an owned end, so every bond is read; a bond with both ends owned is read twice, equal.
+   kappa_prev (when the driver asks for it) is the history a step earlier, or kappa where the file has none
+   (written by a driver that kept none). */
+static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer v) {
   const PDBonds     *bd = m->bonds;
-  Vec                K, L;
-  const PetscScalar *k, *l;
+  Vec                K, L, Kp   = NULL;
+  const PetscScalar *k, *l, *kp = NULL;
+  PetscBool          has = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(HistoryVecs(m, &K, &L));
   PetscCall(VecLoad(K, v));
   PetscCall(VecLoad(L, v));
+  if (kappa_prev) PetscCall(PetscViewerHDF5HasDataset(v, "kappa_previous", &has));
+  if (has) {
+    PetscCall(VecDuplicate(K, &Kp));
+    PetscCall(PetscObjectSetName((PetscObject)Kp, "kappa_previous"));
+    PetscCall(VecLoad(Kp, v));
+    PetscCall(VecGetArrayRead(Kp, &kp));
+  }
   PetscCall(VecGetArrayRead(K, &k));
   PetscCall(VecGetArrayRead(L, &l));
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
@@ -187,11 +209,14 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscViewer v) {
     /* at least the level its history has passed: a leg may run with other -pd_limiter_sublevels */
     m->level[e] = m->level_n[e] =
         (unsigned char)PetscMin(PetscMax((PetscInt)PetscRealPart(l[p]), PDLawLevelOf(law, t, m->kappa[e])), law->sublevels + 1);
+    if (kappa_prev) kappa_prev[e] = kp ? PetscRealPart(kp[p]) : m->kappa[e];
   }
   PetscCall(VecRestoreArrayRead(K, &k));
   PetscCall(VecRestoreArrayRead(L, &l));
+  if (Kp) PetscCall(VecRestoreArrayRead(Kp, &kp));
   PetscCall(VecDestroy(&K));
   PetscCall(VecDestroy(&L));
+  PetscCall(VecDestroy(&Kp));
   PetscCall(PDModelCountDamage(m));
   PetscFunctionReturn(0);
 }
@@ -263,7 +288,7 @@ static PetscErrorCode Totals(PDModel *m, PDRecord *rec, PetscViewer v, PetscBool
 }
 
 PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const Vec vec[], const char *const vec_name[], PetscInt nreal,
-                                 const char *const real_name[], const PetscReal real[]) {
+                                 const char *const real_name[], const PetscReal real[], const PetscReal *kappa_prev) {
   MPI_Comm       comm = m->lat->comm;
   PetscViewer    v;
   char           path[PETSC_MAX_PATH_LEN];
@@ -284,7 +309,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(Totals(m, rec, v, PETSC_TRUE));
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", real_name[k], PETSC_REAL, &real[k]));
   PetscCall(WriteRows(comm, rec, v));
-  if (m->softening) PetscCall(WriteHistory(m, v));
+  if (m->softening) PetscCall(WriteHistory(m, kappa_prev, v));
   for (PetscInt k = 0; k < nvec; k++) {
     PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
     PetscCall(VecView(vec[k], v));
@@ -299,7 +324,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
 /* Reads what PDCheckpointWrite wrote (the file was validated before the run started). The rows' wall
    clock goes on from the last one. */
 PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, PetscInt nvec, Vec vec[], const char *const vec_name[],
-                                PetscInt nreal, const char *const real_name[], PetscReal real[]) {
+                                PetscInt nreal, const char *const real_name[], PetscReal real[], PetscReal *kappa_prev) {
   MPI_Comm        comm = m->lat->comm;
   PetscViewer     v;
   PetscInt        nrows;
@@ -312,7 +337,7 @@ PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, Pet
   /* a scalar the file lacks (written before the driver kept it) reads as 0 */
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &real[k]));
   PetscCall(ReadRows(comm, rec, nrows, v));
-  if (m->softening) PetscCall(ReadHistory(m, v));
+  if (m->softening) PetscCall(ReadHistory(m, kappa_prev, v));
   for (PetscInt k = 0; k < nvec; k++) {
     PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
     PetscCall(VecLoad(vec[k], v));

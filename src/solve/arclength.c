@@ -29,7 +29,7 @@ typedef struct {
   PetscReal gauge_turn; /* CMOD (else load-point displacement) where the path turned */
 } Reversal;
 
-#define NSTATE 15 /* scalars a checkpoint keeps of the driver (state_names below) */
+#define NSTATE 16 /* scalars a checkpoint keeps of the driver (state_names below) */
 
 typedef struct {
   PDModel       *m;
@@ -440,9 +440,10 @@ static PetscErrorCode LoadReversal(Arc *a, const PDRecord *rec, const PDCurveRow
    of the driver at an accepted step. A restart builds its preconditioner afresh where the run that wrote
    the checkpoint had a lagged one; both solve to the same tolerance, and the restarted path retraces the
    other to round-off (measured 6e-12 of the peak load on the 2D half-notched beam). */
-static const char *const state_names[] = {
-    "step",      "lambda",         "external_work", "control", "arc_length",     "arc_length_first", "load_increment", "peak",
-    "peak_sign", "spherical_psi2", "have_previous", "turn",    "reversal_phase", "reversal_gauge",   "arc_length_hold"};
+static const char *const state_names[] = {"step",           "lambda",           "external_work",   "control",
+                                          "arc_length",     "arc_length_first", "load_increment",  "peak",
+                                          "peak_sign",      "spherical_psi2",   "have_previous",   "turn",
+                                          "reversal_phase", "reversal_gauge",   "arc_length_hold", "implex_previous_length"};
 _Static_assert(sizeof state_names / sizeof state_names[0] == NSTATE, "one name per checkpointed scalar");
 static const char *const state_vec_names[] = {"displacement", "internal_force", "last_step"};
 
@@ -461,7 +462,8 @@ static void PackState(Arc *a, const PDPath *p) {
                                (PetscReal)a->turn,
                                (PetscReal)a->rev.phase,
                                a->rev.gauge_turn,
-                               (PetscReal)a->hold};
+                               (PetscReal)a->hold,
+                               a->len_prev};
   PetscArraycpy(a->state, v, NSTATE);
 }
 
@@ -482,13 +484,14 @@ static void UnpackState(Arc *a, PDPath *p) {
   a->rev.phase       = (PetscInt)v[12];
   a->rev.gauge_turn  = v[13];
   a->hold            = (PetscInt)v[14];
+  a->len_prev        = v[15];
 }
 
 static PetscErrorCode WriteCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
   const Vec vec[] = {p->u_n, p->f_n, a->dprev};
 
   PetscFunctionBeginUser;
-  PetscCall(PDCheckpointWrite(a->m, rec, 3, vec, state_vec_names, NSTATE, state_names, a->state));
+  PetscCall(PDCheckpointWrite(a->m, rec, 3, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
   PetscFunctionReturn(0);
 }
 
@@ -497,7 +500,7 @@ static PetscErrorCode ReadCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
   Vec      vec[] = {p->u_n, p->f_n, a->dprev};
 
   PetscFunctionBeginUser;
-  PetscCall(PDCheckpointRead(m, rec, m->scene->restart, 3, vec, state_vec_names, NSTATE, state_names, a->state));
+  PetscCall(PDCheckpointRead(m, rec, m->scene->restart, 3, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
   UnpackState(a, p);
   m->lambda     = p->lambda_n;
   a->assemblies = 0;
@@ -548,10 +551,12 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   if (a.augmented) PetscCall(PDAugmentedCreate(a.J, a.ksp, &a.aug));
   if (sc->restart[0]) PetscCall(ReadCheckpoint(&a, &path, rec));
   if (a.kx_n) {
-    /* no limiter: every threshold is open, as on the explicit path. A restart extrapolates from one step */
+    /* no limiter: every threshold is open, as on the explicit path. A restart has the history a step
+       earlier from its checkpoint (one written without IMPL-EX: the same history, no extrapolation) */
     for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
       m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
-      a.kx_n[e] = a.kx_prev[e] = m->kappa[e];
+      a.kx_n[e]                   = m->kappa[e];
+      if (!sc->restart[0]) a.kx_prev[e] = m->kappa[e];
     }
   }
   PackState(&a, &path);
