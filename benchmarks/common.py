@@ -17,12 +17,17 @@ ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIR
 def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT, grace=600):
     """Runs cmd (output to the open files given), stopped after timeout seconds: SIGTERM, on which
     pdimplicit finishes the step under way and writes what it traced (status 'interrupted'), then SIGKILL
-    grace seconds later. (Run pdimplicit itself, not mpiexec: Open MPI's launcher kills its ranks a second
-    after forwarding SIGTERM.) Returns (exit code, wall s, CPU s, timed out). The CPU time is the child's
-    own (wait4), which a second run sharing the two cores does not inflate as it does the wall time."""
+    grace seconds later. Under mpiexec the signal goes to the ranks, not to mpiexec, which kills its ranks
+    a second after forwarding it. Returns (exit code, wall s, CPU s, timed out). The CPU time is the
+    child's own and, under mpiexec, that of the ranks it reaped (wait4), which a second run sharing the two
+    cores does not inflate as it does the wall time."""
     t0 = time.time()
     p = subprocess.Popen(cmd, stdout=stdout, stderr=stderr, env=ENV)
-    timers = [threading.Timer(timeout, p.terminate), threading.Timer(timeout + grace, p.kill)]
+    if os.path.basename(cmd[0]) == "mpiexec":
+        stop = lambda: subprocess.run(["pkill", "-TERM", "-P", str(p.pid)])
+    else:
+        stop = p.terminate
+    timers = [threading.Timer(timeout, stop), threading.Timer(timeout + grace, p.kill)]
     for t in timers:
         t.start()
     _, status, ru = os.wait4(p.pid, 0)

@@ -9,9 +9,10 @@ strength against size) are rewritten from that file after every run. Runs go two
 A run longer than --timeout is stopped with SIGTERM and keeps what it traced, with a checkpoint (written
 every 25 steps too). Its output stays in $PDSIZE_WORK (default /tmp/pdsize_work); --resume goes on from
 the checkpoints of the selected runs that were interrupted, one leg of at most --timeout each, and the
-stored result then covers all legs (CPU and wall time summed).
+stored result then covers all legs (CPU and wall time summed). --ranks N runs each leg under mpiexec on
+N ranks (a leg may go on from a checkpoint on another number of ranks; it retraces the path).
 
-Usage: benchmarks/size_effect.py [--jobs 2] [--dx 5e-3,10e-3] [--sizes 50,100,200,400] [--timeout 7200]
+Usage: benchmarks/size_effect.py [--jobs 2] [--ranks 1] [--dx 5e-3,10e-3] [--sizes 50,100,200,400] [--timeout 7200]
        [--dim 3|2] [--implex TOL] [--resume] [--report]     (--report only rewrites the tables and plot)
 """
 import argparse
@@ -114,15 +115,16 @@ def resumable(r):
     return r.get("status", "").startswith(("interrupted", "stopped after")) and os.path.exists(r.get("checkpoint", ""))
 
 
-def run_one(D, kind, dx, timeout, dim=3, prev=None, implex=0):
-    """One leg of a run: from the start, or from prev's checkpoint (prev: the stored result of the legs so far)."""
+def run_one(D, kind, dx, timeout, dim=3, prev=None, implex=0, ranks=1):
+    """One leg of a run on `ranks` MPI ranks: from the start, or from prev's checkpoint (prev: the stored
+    result of the legs so far; a leg may use another number of ranks)."""
     os.makedirs(WORK, exist_ok=True)
     out = tempfile.mkdtemp(prefix=key(D, kind, dx, dim, implex).replace("/", "_").replace("=", "") + "_", dir=WORK)
     scene = scene_args(D, kind, dx, implex) if dim == 3 else scene_args_2d(D, kind, dx)
     if dim == 2 and implex > 0:
         scene += ["-pd_arclength_implex", str(implex)]
     # the progress display (one entry per step, on stderr) goes to log.txt, to follow a long run
-    cmd = [EXE] + scene + ["-pd_checkpoint_every", str(CHECKPOINT_EVERY)]
+    cmd = (["mpiexec", "-n", str(ranks)] if ranks > 1 else []) + [EXE] + scene + ["-pd_checkpoint_every", str(CHECKPOINT_EVERY)]
     if prev:
         cmd += ["-pd_restart", prev["checkpoint"]]
     cmd += ["-pd_progress", "-pd_output_dir", out]
@@ -130,7 +132,7 @@ def run_one(D, kind, dx, timeout, dim=3, prev=None, implex=0):
         code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
     legs = prev.get("legs", 1) + 1 if prev else 1
     r = {"wall": wall + (prev["wall"] if prev else 0), "cpu": cpu + (prev.get("cpu", 0) if prev else 0), "returncode": code,
-         "command": portable(" ".join(scene)), "legs": legs}
+         "command": portable(" ".join(scene)) + (" (mpiexec -n %d)" % ranks if ranks > 1 else ""), "legs": legs}
     if os.path.exists(os.path.join(out, "checkpoint.h5")):
         r["checkpoint"] = os.path.join(out, "checkpoint.h5")
     if not os.path.exists(os.path.join(out, "summary.json")):
@@ -254,6 +256,7 @@ def report(res):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--ranks", type=int, default=1, help="MPI ranks per run (runs at once times ranks should not exceed the cores)")
     ap.add_argument("--dx", default="5e-3,10e-3")
     ap.add_argument("--sizes", default="50,100,200,400")
     ap.add_argument("--kinds", default="un,fn,hn")
@@ -271,7 +274,7 @@ def main():
         todo = [(D, kind, float(dx)) for dx in a.dx.split(",") for D in map(int, a.sizes.split(",")) for kind in a.kinds.split(",")
                 if key(D, kind, float(dx), a.dim, a.implex) not in done or (a.resume and resumable(res[key(D, kind, float(dx), a.dim, a.implex)]))]
         with concurrent.futures.ThreadPoolExecutor(a.jobs) as pool:
-            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim, res[key(D, kind, dx, a.dim, a.implex)] if key(D, kind, dx, a.dim, a.implex) in done else None, a.implex):
+            futs = {pool.submit(run_one, D, kind, dx, a.timeout, a.dim, res[key(D, kind, dx, a.dim, a.implex)] if key(D, kind, dx, a.dim, a.implex) in done else None, a.implex, a.ranks):
                     (D, kind, dx) for D, kind, dx in todo}
             for f in concurrent.futures.as_completed(futs):
                 D, kind, dx = futs[f]
