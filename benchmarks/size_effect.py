@@ -131,7 +131,9 @@ def run_one(D, kind, dx, timeout, dim=3, prev=None, implex=0, ranks=1):
     with open(os.path.join(out, "log.txt"), "w") as log:
         code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
     legs = prev.get("legs", 1) + 1 if prev else 1
-    r = {"wall": wall + (prev["wall"] if prev else 0), "cpu": cpu + (prev.get("cpu", 0) if prev else 0), "returncode": code,
+    # CPU time is summed over legs only where every leg measured it (not under mpiexec)
+    known = cpu is not None and (not prev or prev.get("cpu") is not None)
+    r = {"wall": wall + (prev["wall"] if prev else 0), "cpu": cpu + (prev.get("cpu", 0) if prev else 0) if known else None, "returncode": code,
          "command": portable(" ".join(scene)) + (" (mpiexec -n %d)" % ranks if ranks > 1 else ""), "legs": legs}
     if os.path.exists(os.path.join(out, "checkpoint.h5")):
         r["checkpoint"] = os.path.join(out, "checkpoint.h5")
@@ -196,7 +198,7 @@ def report(res):
             continue
         lines.append("| %d | %s | %s | %d | %d | %.0f | %.2f | %.3f | %.4f | %d | %d | %d | %.0f | %s | %s | %s |" % (
             D, KINDS[kind], method(k), r["nodes"], r["bonds"], r["peak"], nominal_strength(D, r["peak"]), r["final_fraction"],
-            1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["cpu"] if "cpu" in r else "",
+            1e3 * r["snapback_m"], r["steps"], r["newton"], r["ksp"], r["wall"], "%.0f" % r["cpu"] if r.get("cpu") is not None else "",
             "%.0f" % r["memory_MB"] if r.get("memory_MB") else "",
             r["status"][:60] + (" (%d legs)" % r["legs"] if r.get("legs", 1) > 1 else "")))
     # Bazant's size effect law for notched beams, sigma_N = B f_t / sqrt(1 + D / D0): 1 / sigma_N^2 is linear
