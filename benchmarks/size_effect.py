@@ -185,7 +185,8 @@ def report(res):
              "Written by `benchmarks/size_effect.py` from `size_effect.json`. 3D and 2D plane stress (thickness 50 mm), non-linear",
              "law (f_t = 3.9 MPa, G_F = 143.2 N/m), surface and critical-stretch corrections, CMOD-controlled arc length",
              "(`-pd_control arclength`) from the start to 10 % of the peak; unnotched beams with 5 % bond-strength scatter",
-             "(`-pd_strength_scatter 0.05`). One rank each; CPU is the run's own (wall time grows when runs share the 2 cores).",
+             "(`-pd_strength_scatter 0.05`). CPU is the run's own on one rank (wall time grows when runs share the 2 cores); it is",
+             "empty where a leg ran on 2 ranks under mpiexec, whose wall time is then the measure (size_effect.md says which).",
              "sigma_N = 3 P S / (2 b D^2) with span S = 2.5 D and b = 50 mm. 'load point back': how far the load point moves",
              "back after the peak (snap-back).", "",
              "| D (mm) | beam | model, dx (mm) | nodes | bonds | peak (N) | sigma_N (MPa) | end (of peak) | load point back (mm) | steps | Newton | KSP | "
