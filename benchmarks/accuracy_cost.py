@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """What accuracy costs in time: implicit and explicit paths on the same points.
 
 Points: the elastic cantilever against Timoshenko (tip deflection) and the Gregoire D = 50 mm beams

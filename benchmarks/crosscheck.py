@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Cross-check: run one scene on the implicit path and on the explicit reference path, and compare.
 
 Compares the peak load, the load-displacement (or load-CMOD) curves over their common range (RMS load

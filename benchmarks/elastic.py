@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Elastic solve benchmark on the Gregoire D = 50 mm beam geometry (half-notched, displacement control).
 
 Times set-up (lattice, bonds, model), assembly and solve at dx = 10, 5, 2.5, 1.25 mm with several

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Gregoire et al. (2013) D = 50 mm beams traced to CMOD = 0.2 mm: laws, spacings, limiter and tangent.
 
 Runs the three shipped scenes (unnotched, fifth-, half-notched) with each softening law at dx = 5 and

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Size effect: the Gregoire et al. (2013) beams D = 50, 100, 200, 400 mm (unnotched, notch 0.2 D, notch
 0.5 D) in 3D under path following (CMOD control), traced past the peak to 10 % of it.
 

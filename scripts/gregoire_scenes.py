@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Writes the geometrically similar Gregoire et al. (2013) beam scenes for D = 100, 200, 400 mm (3D) and
 the 2D plane-stress scenes used by the path-following tests. D = 50 mm scenes are written by hand.
 
