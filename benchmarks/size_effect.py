@@ -228,7 +228,7 @@ def report(res):
     size_colour = {50: "C0", 100: "C1", 200: "C2", 400: "C3"}
     kind_colour = {"un": "C0", "fn": "C1", "hn": "C2"}
     style = lambda how: ":" if how.startswith("2D") else "--" if "IMPL-EX 0.03" in how else "-." if "IMPL-EX" in how else "-"
-    fig, ax = plt.subplots(1, 4, figsize=(20, 5))
+    fig, ax = plt.subplots(1, 4, figsize=(22, 5))
     for i, kind in enumerate(KINDS):
         for k in keys:
             r, (D, kd) = res[k], parse_key(k)[:2]
@@ -251,7 +251,7 @@ def report(res):
         axis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax[3].set_xticks([50, 100, 200, 400])
     ax[3].set_yticks([1, 2, 3, 4, 6, 8])
-    ax[3].legend(fontsize=6.5)
+    ax[3].legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.02, 1))
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, "size_effect.png"), dpi=110)
 
