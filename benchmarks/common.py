@@ -24,10 +24,8 @@ def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT, grace=600):
     two busy ranks used)."""
     t0 = time.time()
     p = subprocess.Popen(cmd, stdout=stdout, stderr=stderr, env=ENV)
-    if os.path.basename(cmd[0]) == "mpiexec":
-        stop = lambda: subprocess.run(["pkill", "-TERM", "-P", str(p.pid)])
-    else:
-        stop = p.terminate
+    under_mpiexec = os.path.basename(cmd[0]) == "mpiexec"
+    stop = (lambda: subprocess.run(["pkill", "-TERM", "-P", str(p.pid)])) if under_mpiexec else p.terminate
     timers = [threading.Timer(timeout, stop), threading.Timer(timeout + grace, p.kill)]
     for t in timers:
         t.start()
@@ -35,7 +33,7 @@ def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT, grace=600):
     for t in timers:
         t.cancel()
     wall = time.time() - t0
-    cpu = None if os.path.basename(cmd[0]) == "mpiexec" else ru.ru_utime + ru.ru_stime
+    cpu = None if under_mpiexec else ru.ru_utime + ru.ru_stime
     return os.waitstatus_to_exitcode(status), wall, cpu, wall >= timeout
 
 

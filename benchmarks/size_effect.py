@@ -211,8 +211,9 @@ def report(res):
         if past_peak(res[k]):
             D, kind = parse_key(k)[:2]
             series.setdefault((kind, method(k)), []).append((D, nominal_strength(D, res[k]["peak"])))
-    for (kind, how), pts in sorted(series.items()):
+    for pts in series.values():
         pts.sort()
+    for (kind, how), pts in sorted(series.items()):
         if len(pts) < 3:
             continue
         xs, ys = [p[0] for p in pts], [1 / p[1] ** 2 for p in pts]
@@ -238,13 +239,10 @@ def report(res):
                        lw=1.2, label="D = %d, %s" % (D, method(k)))
         ax[i].set(title=KINDS[kind], xlabel="CMOD (mm)", ylabel="load (kN)")
         ax[i].legend(fontsize=6.5, ncol=2, loc="upper right")
-    for kind, mk in zip(KINDS, "o^s"):
-        pts = sorted((parse_key(k)[0], nominal_strength(parse_key(k)[0], res[k]["peak"]), method(k))
-                     for k in keys if parse_key(k)[1] == kind and past_peak(res[k]))
-        for how in sorted(set(p[2] for p in pts)):
-            q = [p for p in pts if p[2] == how]
-            ax[3].loglog([p[0] for p in q], [p[1] for p in q], style(how), marker=mk, color=kind_colour[kind],
-                         label="%s, %s" % (KINDS[kind], how))
+    marker = dict(zip(KINDS, "o^s"))
+    for (kind, how), pts in sorted(series.items(), key=lambda s: (list(KINDS).index(s[0][0]), s[0][1])):
+        ax[3].loglog([p[0] for p in pts], [p[1] for p in pts], style(how), marker=marker[kind], color=kind_colour[kind],
+                     label="%s, %s" % (KINDS[kind], how))
     ax[3].set(title="nominal strength at the peak", xlabel="D (mm)", ylabel="sigma_N (MPa)")
     for axis in (ax[3].xaxis, ax[3].yaxis):
         axis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
