@@ -3,6 +3,7 @@ static const char help[] = "pdimplicit: implicit quasi-static bond-based peridyn
                            "Every -pd_ option is listed, with its default, by -help.\n";
 
 #include "pd_solve.h"
+#include "pd_log.h"
 
 /* Everything a scene can get wrong is found here, before any output exists. */
 static PetscErrorCode BuildProblem(MPI_Comm comm, PDScene *sc, PDLattice *lat, PDBonds *bonds, PDModel *model, PDRecord *rec,
@@ -40,6 +41,8 @@ int main(int argc, char **argv) {
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, help));
   comm = PETSC_COMM_WORLD;
+  PetscCall(PDLogRegister());
+  PetscCall(PetscLogStagePush(PD_LOG.setup));
   {
     PetscErrorCode ierr;
     /* bad input: one clear line on stderr and a non-zero exit, not a traceback */
@@ -51,6 +54,7 @@ int main(int argc, char **argv) {
       char       *specific;
       PetscCall(PetscErrorMessage(ierr, &text, &specific));
       PetscCall(PetscFPrintf(comm, PETSC_STDERR, "pdimplicit: error: %s\n", specific && specific[0] ? specific : text));
+      PetscCall(PetscLogStagePop());
       PetscCall(PetscFinalize());
       return 2;
     }
@@ -72,6 +76,8 @@ int main(int argc, char **argv) {
                           model.nzero_dofs, model.nisolated));
   PetscCall(PDOutputPrepare(comm, &sc, &rec));
   PetscCall(PDInterruptInstall()); /* SIGTERM: finish the step, write what was traced */
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(PD_LOG.solve));
   if (!dry_run)
     PetscCall(sc.failure_search                    ? PDFailureSearchRun(&model, &rec)
               : sc.explicit_mode                   ? PDExplicitRun(&model, &rec)
@@ -79,6 +85,8 @@ int main(int argc, char **argv) {
                                                    : PDStaticRun(&model, &rec));
   else
     PetscCall(PetscStrncpy(rec.status, "dry run: scene built, not solved", sizeof rec.status));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscLogStagePush(PD_LOG.output));
   converged     = dry_run ? PETSC_TRUE : rec.converged;
   rec.converged = converged;
   PetscCall(PetscTime(&t0));
@@ -88,6 +96,7 @@ int main(int argc, char **argv) {
   PetscCall(PetscTime(&t1));
   rec.t_output += t1 - t0;
   PetscCall(PDSummaryWrite(comm, &model, &rec));
+  PetscCall(PetscLogStagePop());
   if (sc.explicit_mode)
     PetscCall(PetscPrintf(comm, "  %s: %" PetscInt_FMT " time steps of %.4g s; results in %s\n", rec.status, rec.time_steps, (double)rec.dt,
                           rec.dir));

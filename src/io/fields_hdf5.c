@@ -1,6 +1,7 @@
 /* fields.h5 through PETSc's HDF5 viewer (node positions once, displacement and damage per chosen step)
    and fields.xmf, the XDMF index that lets ParaView open them as a point cloud over time. */
 #include "pd_io.h"
+#include "pd_log.h"
 #include <petscviewerhdf5.h>
 
 static PetscErrorCode CreateNodeVec(const PDModel *m, PetscInt bs, Vec *v) {
@@ -21,6 +22,7 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
   PetscLogDouble     t0, t1;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(PD_LOG.fields, 0, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   PetscCall(CreateNodeVec(m, 3, &v3));
   if (!rec->h5) {
@@ -55,6 +57,7 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
   rec->field_steps[rec->nfield_steps++] = step;
   PetscCall(PetscTime(&t1));
   rec->t_output += t1 - t0;
+  PetscCall(PetscLogEventEnd(PD_LOG.fields, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -3,6 +3,7 @@
    then gathered from the stored tangent scalars node by node. */
 #include "pd_model.h"
 #include "kernel.h"
+#include "pd_log.h"
 
 /* Geometry of one bond in the current configuration: direction e, reference and current lengths, the
    stretch s and the factor q with ds/deta = q e. Small kinematics: s = xi.eta/|xi|^2 along xi/|xi|
@@ -103,6 +104,7 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   const PetscInt   bs  = m->bs;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
   PetscCall(PetscArrayzero(f, bs * lat->nlocal));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
@@ -116,6 +118,7 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     }
   }
   PetscCall(PetscLogFlops(30.0 * bd->nbonds));
+  PetscCall(PetscLogEventEnd(PD_LOG.force, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -129,6 +132,7 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
   PetscReal        es = 0, ed = 0;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(PD_LOG.energy, 0, 0, 0, 0));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
     PetscReal      dir[3], L0, L, s, q, c = bd->coef[e];
@@ -148,6 +152,7 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
   }
   *stored     = es;
   *dissipated = ed;
+  PetscCall(PetscLogEventEnd(PD_LOG.energy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -161,6 +166,7 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
   const PetscBool  geometric = m->scene->kinematics == PD_KINEMATICS_FINITE;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(PD_LOG.tangent, 0, 0, 0, 0));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
     PetscReal      dir[3], L0, L, s, q, g, gp;
@@ -170,6 +176,7 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
     kb[e] = geometric ? g / L : 0;
     if (kp) kp[e] = gp < 0 && s > 0 ? ka[e] + (g / s - gp) * q : ka[e];
   }
+  PetscCall(PetscLogEventEnd(PD_LOG.tangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -215,6 +222,7 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscBool        assembled, aij, rowcopy;
 
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(PD_LOG.assembly, 0, 0, 0, 0));
   /* Once an AIJ matrix holds its (exact, fixed) pattern, each scalar row is copied in place in column
      order: MatSetValues would search every column of the row, which made AIJ assembly six times slower
      than SBAIJ's (the storage GAMG needs). Blocked storage keeps MatSetValuesBlocked. */
@@ -271,6 +279,7 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MPIU_Allreduce(&nreg, nregularised, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscCall(PetscLogEventEnd(PD_LOG.assembly, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -10,6 +10,7 @@
    all ranks see the same merged list, so the sequence does not depend on the number of ranks. */
 #include "pd_model.h"
 #include "kernel.h"
+#include "pd_log.h"
 
 typedef struct {
   PetscReal  crit;
@@ -45,6 +46,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   PetscFunctionBeginUser;
   *ncandidates = *granted = 0;
   if (!m->softening) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(PD_LOG.limiter, 0, 0, 0, 0));
   s = m->stretch;
   PetscCall(PDModelStretchesAt(m, u, s));
   /* criticality s / threshold, >= 1 for a held bond, kept in place of the stretch. A bond passing from
@@ -74,6 +76,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   if (*ncandidates == 0) {
     *ncandidates = *granted = parts;
     PetscCall(PetscFree(mine));
+    PetscCall(PetscLogEventEnd(PD_LOG.limiter, 0, 0, 0, 0));
     PetscFunctionReturn(0);
   }
   if (max_events == 0 || *ncandidates <= max_events) {
@@ -110,6 +113,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   *ncandidates += parts;
   *granted += parts;
   PetscCall(PetscFree(mine));
+  PetscCall(PetscLogEventEnd(PD_LOG.limiter, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
@@ -149,6 +153,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
 
   PetscFunctionBeginUser;
   if (!m->softening) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   s = m->stretch;
   PetscCall(PDModelStretchesAt(m, u, s));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
@@ -157,6 +162,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
     m->level_n[e]       = m->level[e];
   }
   PetscCall(PDModelCountDamage(m));
+  PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 
