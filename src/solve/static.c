@@ -62,6 +62,27 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
   PetscFunctionReturn(0);
 }
 
+/* Start of a non-linear increment. The residual at u_n with the new boundary values is the increment's
+   load; equilibrium is demanded relative to it (rtol), as SNES's relative test does from that start.
+   The last accepted increment, scaled to this one, is then added on the free dofs (a secant predictor):
+   on a smooth stretch of the path Newton starts next to the answer, and the absolute tolerance keeps
+   the demanded equilibrium that of the plain start, not a stricter one relative to a smaller residual. */
+static PetscErrorCode Predict(PDModel *m, SNES snes, PetscReal atol0, Vec r, Vec u, Vec du_prev, PetscReal ratio) {
+  PetscReal rnorm, atol, rtol, stol;
+  PetscInt  maxit;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelResidual(snes, u, r, m));
+  PetscCall(VecNorm(r, NORM_2, &rnorm));
+  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, NULL));
+  PetscCall(SNESSetTolerances(snes, PetscMax(atol0, rtol * rnorm), rtol, stol, maxit, -1));
+  if (ratio > 0) {
+    PetscCall(VecAXPY(u, ratio, du_prev));
+    PetscCall(PDModelApplyBoundaryValues(m, m->lambda, u));
+  }
+  PetscFunctionReturn(0);
+}
+
 static PetscBool FieldsDue(const PDScene *sc, PetscInt step, PetscBool last) {
   if (last) return PETSC_TRUE;
   return (sc->fields_every > 0 && step % sc->fields_every == 0) ? PETSC_TRUE : PETSC_FALSE;
@@ -127,10 +148,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
-  Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
-  Vec            u, r;
+  Mat            J, P;          /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
+  Vec            u, r, du_prev; /* du_prev: the last accepted increment, for the predictor */
   PDPath         path;
-  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps;
+  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0;
   PetscInt       step = 0;
 
   PetscFunctionBeginUser;
@@ -139,11 +160,13 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   if (m->kp) PetscCall(PDModelCreateMatrix(m, &P));
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &r));
+  PetscCall(VecDuplicate(m->f_ref, &du_prev));
   PetscCall(PDPathCreate(m, &path));
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
   PetscCall(SNESSetJacobian(snes, J, P, PDModelJacobian, m));
   PetscCall(ConfigureSolver(m, snes));
+  PetscCall(SNESGetTolerances(snes, &atol0, NULL, NULL, NULL, NULL));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   dl = PetscMin(dl, sc->dlambda_max);
@@ -158,6 +181,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(VecCopy(path.u_n, u));
     PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
+    if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, du_prev, dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
     PetscCall(SolveIncrement(m, snes, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);
@@ -175,6 +199,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       PetscCall(PetscInfo(NULL, "increment to %g failed (%s): cut to %g\n", (double)lam, res.why, (double)dl));
       continue;
     }
+    PetscCall(VecWAXPY(du_prev, -1, path.u_n, u));
+    dl_prev = lam - lambda_n;
     PetscCall(PDPathAccept(m, rec, &path, u, lam, res.its, res.lits, &row));
     lambda_n                = lam;
     step                    = path.step;
@@ -218,6 +244,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&du_prev));
   PetscCall(PDPathDestroy(&path));
   PetscFunctionReturn(0);
 }
