@@ -119,8 +119,9 @@ typedef struct {
   PetscInt   load_region; /* region whose force or reaction is the curve's load */
   PetscInt   disp_region; /* region whose mean displacement is the curve's displacement */
   PetscBool  has_cmod;
-  PetscReal  cmod[6]; /* two gauge points */
-  PetscInt   steps;   /* load steps */
+  PetscReal  cmod[6];   /* two gauge points */
+  PetscInt   steps;     /* load steps */
+  PetscBool  predictor; /* load/displacement control: secant predictor from the last increment */
   PetscInt   fields_every;
   PetscInt   checkpoint_every;            /* path following: write checkpoint.h5 every N accepted steps; 0: only when stopped early */
   char       restart[PETSC_MAX_PATH_LEN]; /* path following: checkpoint to go on from, or empty */

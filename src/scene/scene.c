@@ -597,6 +597,10 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
              "Option -pd_dlambda_min: must be positive and at most -pd_dlambda_max, got %g", (double)sc->dlambda_min);
   PetscCall(
       PDOptionReal(PetscOptionsObject, "-pd_stop_cmod", "Stop once the CMOD gauge opens this much (m); 0: off", &sc->stop_cmod, NULL));
+  sc->predictor = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, "-pd_predictor",
+                         "Load or displacement control: start each increment from the last one, scaled (secant predictor)", &sc->predictor,
+                         NULL));
   if (sc->explicit_mode) {
     PetscCall(PDOptionReal(PetscOptionsObject, "-pd_ramp_time",
                            "Explicit: duration of the fifth-order smoothstep ramp of the load factor (s); 0: 20,000 time steps",

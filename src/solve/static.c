@@ -181,7 +181,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(VecCopy(path.u_n, u));
     PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
-    if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, du_prev, dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
+    if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, du_prev, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
     PetscCall(SolveIncrement(m, snes, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);

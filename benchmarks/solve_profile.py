@@ -1,0 +1,104 @@
+#!/usr/bin/python3
+"""Where an implicit softening run spends its time, from PETSc's -log_view, and what the solver's levers
+change: the Gregoire D = 50 mm half-notched beam (the default scene) under displacement control to CMOD
+0.2 mm, each configuration run one after the other in one invocation so that their ratios are taken on
+the same machine state. Writes docs/benchmarks/solve_profile.json and solve_profile.md.
+
+Usage: benchmarks/solve_profile.py [--dx 5e-3] [--timeout 1800] [--report]
+"""
+import argparse
+import csv
+import json
+import os
+import re
+import tempfile
+
+from common import EXE, OUT, ROOT, load_results, run_timed, store_result
+
+RESULTS = os.path.join(OUT, "solve_profile.json")
+SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
+# configurations compared: label -> extra options
+CONFIGS = {"default": [], "no predictor": ["-pd_predictor", "false"]}
+# -log_view events reported, in this order: pdimplicit's own (include/pd_log.h) and PETSc's solver events
+EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
+          "PCApply", "MatMult", "MatSolve"]
+
+
+def parse_log(path):
+    """Seconds per event of the 'PD solve' stage (the last occurrence of each event line wins: the solve
+    stage is printed after set-up) and the stages' times."""
+    ev, stages = {}, {}
+    for line in open(path):
+        m = re.match(r"^\s*\d+:\s+(PD [a-z-]+):\s+(\S+)", line)
+        if m:
+            stages[m.group(1)] = float(m.group(2))
+        p = line.split()
+        if p and p[0] in EVENTS and len(p) > 4:
+            ev[p[0]] = ev.get(p[0], 0) + float(p[3])
+    return ev, stages
+
+
+def run(label, extra, dx, timeout):
+    out = tempfile.mkdtemp(prefix="pdprofile_")
+    logf = os.path.join(out, "log_view.txt")
+    cmd = [EXE, "-options_file", SCENE, "-pd_dx", str(dx), "-pd_output_dir", out, "-log_view", ":" + logf] + extra
+    with open(os.path.join(out, "stdout.txt"), "w") as f:
+        code, wall, cpu, timed_out = run_timed(cmd, timeout, f)
+    s = json.load(open(os.path.join(out, "summary.json")))
+    rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
+    ev, stages = parse_log(logf)
+    return {"label": label, "dx": dx, "command": " ".join(["build/pdimplicit"] + cmd[1:2] + [os.path.relpath(SCENE, ROOT)] + cmd[3:5] + extra),
+            "exit": code, "wall_s": wall, "cpu_s": cpu, "status": s["status"], "steps": s["steps"], "newton_its": s["newton_its"],
+            "ksp_its": s["ksp_its"], "peak_N": s["peak_load_N"], "events_s": ev, "stages_s": stages,
+            "curve": [[float(r["cmod_m"]), float(r["load_N"])] for r in rows]}
+
+
+def curve_difference(a, b):
+    """RMS load difference of b against a over a's CMOD range shared by both, over a's peak."""
+    import numpy as np
+    ca, la = np.array(a["curve"]).T
+    cb, lb = np.array(b["curve"]).T
+    c = np.linspace(0, min(ca.max(), cb.max()), 400)
+    return float(np.sqrt(np.mean((np.interp(c, ca, la) - np.interp(c, cb, lb)) ** 2)) / la.max())
+
+
+def report(res):
+    lines = ["# Where the time goes: the default scene's implicit path", "",
+             "Written by `benchmarks/solve_profile.py` from `solve_profile.json`. The Gregoire D = 50 mm half-notched beam",
+             "(`options/gregoire_d50_hn.opts`) under displacement control to CMOD 0.2 mm, one rank. Configurations of one",
+             "spacing ran one after the other in one invocation; ratios are taken within it. Event times are PETSc's",
+             "`-log_view` for the solve stage (inclusive: KSPSolve contains PCApply and MatMult, PCApply contains MatSolve).", ""]
+    for dx in sorted({r["dx"] for r in res.values()}, reverse=True):
+        runs = [r for r in res.values() if r["dx"] == dx]
+        base = next((r for r in runs if r["label"] == "default"), runs[0])
+        lines += ["## dx = %g mm" % (1e3 * dx), "",
+                  "| configuration | wall (s) | ratio to default | steps | Newton | KSP | peak (N) | peak vs default | RMS vs default | status |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in runs:
+            lines.append("| %s | %.1f | %.2f | %d | %d | %d | %.1f | %+.3f %% | %.3f %% | %s |" % (
+                r["label"], r["wall_s"], r["wall_s"] / base["wall_s"], r["steps"], r["newton_its"], r["ksp_its"], r["peak_N"],
+                100 * (r["peak_N"] / base["peak_N"] - 1), 100 * curve_difference(base, r), r["status"]))
+        lines += ["", "Time by event (s, solve stage) and its share of the solve stage:", "",
+                  "| configuration | " + " | ".join(EVENTS) + " |", "|---|" + "---|" * len(EVENTS)]
+        for r in runs:
+            tot = r["stages_s"].get("PD solve", 1)
+            lines.append("| %s | " % r["label"] + " | ".join("%.2f (%.0f %%)" % (r["events_s"].get(e, 0), 100 * r["events_s"].get(e, 0) / tot)
+                                                            for e in EVENTS) + " |")
+        lines += ["", "Commands:", ""] + ["    %s" % r["command"] for r in runs] + [""]
+    open(os.path.join(OUT, "solve_profile.md"), "w").write("\n".join(lines))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--dx", type=float, default=5e-3)
+    ap.add_argument("--timeout", type=float, default=1800)
+    ap.add_argument("--report", action="store_true")
+    a = ap.parse_args()
+    if not a.report:
+        for label, extra in CONFIGS.items():
+            store_result(RESULTS, "%s/dx=%g" % (label, a.dx), run(label, extra, a.dx, a.timeout))
+    report(load_results(RESULTS))
+
+
+if __name__ == "__main__":
+    main()
