@@ -18,7 +18,8 @@ from common import EXE, OUT, ROOT, load_results, run_timed, store_result
 RESULTS = os.path.join(OUT, "solve_profile.json")
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 # configurations compared: label -> extra options
-CONFIGS = {"default": [], "no predictor": ["-pd_predictor", "false"]}
+CONFIGS = {"default": [], "no predictor": ["-pd_predictor", "false"],
+           "previous defaults": ["-pd_predictor", "false", "-snes_rtol", "1e-8", "-snes_ksp_ew_version", "2"]}
 # -log_view events reported, in this order: pdimplicit's own (include/pd_log.h) and PETSc's solver events
 EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
           "PCApply", "MatMult", "MatSolve"]
