@@ -3,6 +3,22 @@
 #include "pd_scene.h"
 #include <petscvec.h>
 
+/* Bond family on the lattice (docs/design.md, point 28). Two nodes whose integer lattice offset is
+   (di, dj, dk) lie n2 = di^2 + dj^2 + dk^2 grid spacings squared apart, an exact integer; they are bonded
+   when n2 <= m^2, m = delta/dx. Only the comparison at equality allows round-off in m^2 (a relative
+   4 ulps), so that m = 3 meets n2 = 9 and m = 2 sqrt(3) meets n2 = 12: pairs exactly one horizon apart
+   are on the horizon's edge and are bonded. */
+typedef enum {
+  PD_FAMILY_OUT,  /* beyond the horizon: no bond */
+  PD_FAMILY_IN,   /* strictly inside */
+  PD_FAMILY_EDGE, /* exactly at r = delta */
+} PDFamilyMember;
+PDFamilyMember PDFamilyRule(PetscReal m, PetscInt n2);
+/* Partial-volume factor of a neighbour n2 grid spacings squared away (PA-PDLAMMPS, THEORY.md Eq. 4.2, in
+   units of dx): 1 up to m - 1/2, m + 1/2 - sqrt(n2) beyond, exactly 1/2 on the horizon's edge; 1 when
+   partial volumes are off. */
+PetscReal PDFamilyPartialVolume(PetscReal m, PetscInt n2, PetscBool partial_volume);
+
 /* Nodes sit at cell centres of a regular grid. Global ids run x slowest, so a rank owns a contiguous
    slab of x-layers and its ghosts are the layers within one horizon on either side. */
 typedef struct {
@@ -17,6 +33,9 @@ typedef struct {
   PetscInt  *gid;       /* [nlocal] global id, owned first, then ghosts */
   PetscReal *x;         /* [3*nlocal] positions */
   PetscInt  *material;  /* [nlocal] material index */
+  PetscInt   reach;     /* largest offset along one axis within the horizon: ghost layers per side */
+  PetscInt   nstencil;  /* neighbour offsets within the horizon, the node's own excluded */
+  PetscInt  *stencil;   /* [4*nstencil] di, dj, dk and n2 = di^2 + dj^2 + dk^2, lexicographic in (di, dj, dk) */
 } PDLattice;
 
 /* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
@@ -38,6 +57,12 @@ typedef struct {
 PetscErrorCode PDLatticeCreate(MPI_Comm, const PDScene *, PDLattice *);
 PetscErrorCode PDLatticeDestroy(PDLattice *);
 PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *, PetscInt bs, Vec *);
+/* Local index of the node with global id gid, or -1 when this rank holds it neither as owned nor as ghost. */
+PetscInt PDLatticeLocalIndex(const PDLattice *, PetscInt gid);
+/* Lattice indices (i, j, k) of the node with global id gid (k = 0 in 2D). */
+void PDLatticeNodeIndices(const PDLattice *, PetscInt gid, PetscInt ijk[3]);
+/* Integer lattice offset of node l from node k, and its n2. */
+PetscInt       PDLatticeOffset(const PDLattice *, PetscInt k, PetscInt l, PetscInt d[3]);
 void           PDLatticeInterpolation(const PDLattice *, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n);
 PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PetscBool keep_lambda, PDBonds *);
 /* Global id of a bond (same on every rank): lower node id times N plus the higher one. */

@@ -60,6 +60,21 @@ def run(scene_name, *args, ranks=1, expect_ok=True, outdir=None):
     return r
 
 
+def translated(scene_name, offset):
+    """Options that move a scene's domain and every box, gauge point and cylinder centre of it by offset
+    (m) along each axis."""
+    args = []
+    with open(scene(scene_name)) as f:
+        for line in f:
+            t = line.split()
+            if len(t) != 2 or not (t[0] in ("-pd_domain", "-pd_cmod_points") or t[0].endswith(("_box", "_cylinder"))):
+                continue
+            v = [float(x) for x in t[1].split(",")]
+            moved = len(v) - 1 if t[0].endswith("_cylinder") else len(v)  # a cylinder's radius stays
+            args += [t[0], ",".join(repr(x + offset if k < moved else x) for k, x in enumerate(v))]
+    return args
+
+
 def peak(r):
     """Largest load on the run's curve (N)."""
     return max(row["load_N"] for row in r.curve)

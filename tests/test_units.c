@@ -1,6 +1,7 @@
 /* Unit tests of the pure functions: micromodulus constants (Hobbs Table 3.1, Eq. 3.27/3.28),
-   influence functions and the node-selection rule of regions. */
+   influence functions, the bond-family rule and the node-selection rule of regions. */
 #include "pd_material.h"
+#include "pd_lattice.h"
 #include "check.h"
 
 int main(int argc, char **argv) {
@@ -72,6 +73,29 @@ int main(int argc, char **argv) {
     PetscReal  a[3] = {0.105, 3.0, 0.055}, b[3] = {0.115, 0.0, 0.05};
     Check(PDGeometryContains(&c, a, &sc), "cylinder along y holds a point at r = 7 mm", 1, 1);
     Check(!PDGeometryContains(&c, b, &sc), "cylinder along y drops a point at r = 15 mm", 0, 0);
+  }
+  {
+    /* the bond family in lattice units (design point 28): n2 = di^2 + dj^2 + dk^2 against m^2, pairs at
+       r = delta bonded with partial volume exactly 1/2 */
+    const PetscReal r3 = 2 * PetscSqrtReal(3.0);
+    Check(PDFamilyRule(3, 9) == PD_FAMILY_EDGE, "m = 3: offset (3,0,0) on the horizon's edge", PDFamilyRule(3, 9), PD_FAMILY_EDGE);
+    Check(PDFamilyRule(3, 8) == PD_FAMILY_IN, "m = 3: offset (2,2,0) inside", PDFamilyRule(3, 8), PD_FAMILY_IN);
+    Check(PDFamilyRule(3, 10) == PD_FAMILY_OUT, "m = 3: offset (3,1,0) outside", PDFamilyRule(3, 10), PD_FAMILY_OUT);
+    Check(PDFamilyRule(r3, 12) == PD_FAMILY_EDGE, "m = 2 sqrt(3): offset (2,2,2) on the edge despite m^2 < 12", PDFamilyRule(r3, 12),
+          PD_FAMILY_EDGE);
+    Check(PDFamilyRule(PETSC_PI, 9) == PD_FAMILY_IN && PDFamilyRule(PETSC_PI, 10) == PD_FAMILY_OUT, "m = pi: n2 = 9 inside, 10 outside",
+          PDFamilyRule(PETSC_PI, 10), PD_FAMILY_OUT);
+    Check(PDFamilyRule(3 * (1 - 1e-12), 9) == PD_FAMILY_OUT, "m = 3 (1 - 1e-12): (3,0,0) outside (tolerance only at round-off)",
+          PDFamilyRule(3 * (1 - 1e-12), 9), PD_FAMILY_OUT);
+    Check(PDFamilyPartialVolume(3, 9, PETSC_TRUE) == 0.5, "m = 3: partial volume 1/2 at r = delta", PDFamilyPartialVolume(3, 9, PETSC_TRUE),
+          0.5);
+    Check(PDFamilyPartialVolume(r3, 12, PETSC_TRUE) == 0.5, "m = 2 sqrt(3): partial volume 1/2 at r = delta",
+          PDFamilyPartialVolume(r3, 12, PETSC_TRUE), 0.5);
+    CheckRel("m = pi: partial volume at n2 = 9 is pi + 1/2 - 3", PDFamilyPartialVolume(PETSC_PI, 9, PETSC_TRUE), PETSC_PI - 2.5, 1e-15);
+    Check(PDFamilyPartialVolume(3, 6, PETSC_TRUE) == 1, "m = 3: whole volume at r = sqrt(6) <= m - 1/2",
+          PDFamilyPartialVolume(3, 6, PETSC_TRUE), 1);
+    Check(PDFamilyPartialVolume(3, 9, PETSC_FALSE) == 1, "partial volumes off: 1 at r = delta", PDFamilyPartialVolume(3, 9, PETSC_FALSE),
+          1);
   }
   {
     const int rc = CheckSummary();

@@ -1,62 +1,6 @@
-/* Bond list: cell-list neighbour search, notch cuts, partial volumes, surface correction, bond constants. */
+/* Bond list: neighbour search on lattice offsets, notch cuts, partial volumes, surface correction, bond constants. */
 #include "pd_lattice.h"
 #include "pd_material.h"
-
-/* Cell list over the rank's local nodes with cells of one horizon: neighbours of a node lie in the
-   3^dim cells around its own, so the search is O(N). */
-typedef struct {
-  PetscInt  nc[3];
-  PetscReal lo[3], h;
-  PetscInt *start, *node;
-} CellList;
-
-static PetscInt CellIndex(const CellList *cl, const PetscReal x[3], PetscInt c[3]) {
-  for (PetscInt a = 0; a < 3; a++) {
-    c[a] = (PetscInt)((x[a] - cl->lo[a]) / cl->h);
-    c[a] = PetscMin(PetscMax(c[a], 0), cl->nc[a] - 1);
-  }
-  return (c[0] * cl->nc[1] + c[1]) * cl->nc[2] + c[2];
-}
-
-static PetscErrorCode CellListCreate(const PDLattice *lat, CellList *cl) {
-  PetscReal hi[3];
-  PetscInt  ncells, c[3], *count;
-
-  PetscFunctionBeginUser;
-  cl->h = lat->horizon;
-  for (PetscInt a = 0; a < 3; a++) {
-    cl->lo[a] = PETSC_MAX_REAL;
-    hi[a]     = PETSC_MIN_REAL;
-  }
-  for (PetscInt l = 0; l < lat->nlocal; l++)
-    for (PetscInt a = 0; a < 3; a++) {
-      cl->lo[a] = PetscMin(cl->lo[a], lat->x[3 * l + a]);
-      hi[a]     = PetscMax(hi[a], lat->x[3 * l + a]);
-    }
-  for (PetscInt a = 0; a < 3; a++) cl->nc[a] = (PetscInt)((hi[a] - cl->lo[a]) / cl->h) + 1;
-  ncells = cl->nc[0] * cl->nc[1] * cl->nc[2];
-  PetscCall(PetscCalloc1(ncells + 1, &cl->start));
-  PetscCall(PetscMalloc1(lat->nlocal, &cl->node));
-  PetscCall(PetscMalloc1(ncells, &count));
-  for (PetscInt l = 0; l < lat->nlocal; l++) cl->start[CellIndex(cl, &lat->x[3 * l], c) + 1]++;
-  for (PetscInt i = 0; i < ncells; i++) {
-    cl->start[i + 1] += cl->start[i];
-    count[i] = 0;
-  }
-  for (PetscInt l = 0; l < lat->nlocal; l++) {
-    const PetscInt ci                     = CellIndex(cl, &lat->x[3 * l], c);
-    cl->node[cl->start[ci] + count[ci]++] = l;
-  }
-  PetscCall(PetscFree(count));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode CellListDestroy(CellList *cl) {
-  PetscFunctionBeginUser;
-  PetscCall(PetscFree(cl->start));
-  PetscCall(PetscFree(cl->node));
-  PetscFunctionReturn(0);
-}
 
 /* A notch is a flat box; a bond is cut when its segment crosses the notch plane, or touches it with one
    end, at a point inside the box. This rule reproduces the bond counts of Hobbs Table A.1. */
@@ -75,11 +19,6 @@ static PetscBool NotchCuts(const PDNotch *n, const PetscReal p[3], const PetscRe
     if (r <= n->box[k] + tol || r >= n->box[3 + k] - tol) return PETSC_FALSE;
   }
   return PETSC_TRUE;
-}
-
-static PetscReal PartialVolumeFactor(const PDScene *sc, PetscReal len, PetscReal delta) {
-  if (!sc->partial_volume || len <= delta - 0.5 * sc->dx) return 1;
-  return (delta + 0.5 * sc->dx - len) / sc->dx;
 }
 
 /* A neighbour's share of the family volume V_i in the surface correction, given its partial-volume
@@ -107,49 +46,43 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
   PetscFunctionReturn(0);
 }
 
-/* Neighbour search: for every owned node, every node within the horizon that no notch separates.
-   cut_volume[i] collects the partial volumes of the owned node's neighbours behind a notch. */
+/* Neighbour search: for every owned node, every node within the horizon that no notch separates. The
+   family is the lattice stencil (design point 28) laid on the node's integer lattice indices, so the
+   set depends neither on where the domain sits nor on the slab partition. cut_volume[i] collects the
+   partial volumes of the owned node's neighbours behind a notch. */
 static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local, PetscReal *cut_volume) {
-  CellList        cl;
-  const PetscReal d2 = lat->horizon * lat->horizon * (1 + 1e-10), tol = 1e-9 * sc->dx;
-  PetscInt        c[3], lo[3], hi[3];
+  const PetscReal tol   = 1e-9 * sc->dx;
+  const PetscInt  first = lat->gid_start, last = lat->gid_start + lat->nowned;
 
   PetscFunctionBeginUser;
-  PetscCall(CellListCreate(lat, &cl));
   *ncut_local = 0;
   for (PetscInt i = 0; i < lat->nowned; i++) {
+    const PetscInt   gi = first + i;
     const PetscReal *xi = &lat->x[3 * i];
-    CellIndex(&cl, xi, c);
-    for (PetscInt a = 0; a < 3; a++) {
-      lo[a] = PetscMax(c[a] - 1, 0);
-      hi[a] = PetscMin(c[a] + 1, cl.nc[a] - 1);
+    PetscInt         c[3];
+    PDLatticeNodeIndices(lat, gi, c);
+    for (PetscInt s = 0; s < lat->nstencil; s++) {
+      const PetscInt *st = &lat->stencil[4 * s];
+      const PetscInt  ni = c[0] + st[0], nj = c[1] + st[1], nk = c[2] + st[2];
+      PetscInt        gj, j;
+      PetscBool       cut = PETSC_FALSE;
+      if (ni < 0 || ni >= lat->n[0] || nj < 0 || nj >= lat->n[1] || nk < 0 || nk >= lat->n[2]) continue;
+      gj = (ni * lat->n[1] + nj) * lat->n[2] + nk;
+      /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
+      if (gj < gi && gj >= first && gj < last) continue;
+      j = PDLatticeLocalIndex(lat, gj);
+      for (PetscInt q = 0; q < sc->nnotches && !cut; q++) cut = NotchCuts(&sc->notch[q], xi, &lat->x[3 * j], sc->dim, tol);
+      if (cut) {
+        const PetscReal vcut =
+            FamilyVolumeShare(sc, PDFamilyPartialVolume(sc->horizon_ratio, st[3], sc->partial_volume)) * lat->cell_volume;
+        cut_volume[i] += vcut;
+        if (j < lat->nowned) cut_volume[j] += vcut; /* a pair with a ghost is seen by the ghost's owner too */
+        if (gi < gj) (*ncut_local)++;
+        continue;
+      }
+      PetscCall(PairListPush(pl, i, j));
     }
-    for (PetscInt c0 = lo[0]; c0 <= hi[0]; c0++)
-      for (PetscInt c1 = lo[1]; c1 <= hi[1]; c1++)
-        for (PetscInt c2 = lo[2]; c2 <= hi[2]; c2++) {
-          const PetscInt cell = (c0 * cl.nc[1] + c1) * cl.nc[2] + c2;
-          for (PetscInt p = cl.start[cell]; p < cl.start[cell + 1]; p++) {
-            const PetscInt   j   = cl.node[p];
-            const PetscReal *xj  = &lat->x[3 * j];
-            PetscReal        r2  = 0;
-            PetscBool        cut = PETSC_FALSE;
-            /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
-            if (j == i || (j < lat->nowned && lat->gid[j] < lat->gid[i])) continue;
-            for (PetscInt a = 0; a < 3; a++) r2 += (xj[a] - xi[a]) * (xj[a] - xi[a]);
-            if (r2 > d2) continue;
-            for (PetscInt k = 0; k < sc->nnotches && !cut; k++) cut = NotchCuts(&sc->notch[k], xi, xj, sc->dim, tol);
-            if (cut) {
-              const PetscReal vcut = FamilyVolumeShare(sc, PartialVolumeFactor(sc, PetscSqrtReal(r2), lat->horizon)) * lat->cell_volume;
-              cut_volume[i] += vcut;
-              if (j < lat->nowned) cut_volume[j] += vcut; /* a pair with a ghost is seen by the ghost's owner too */
-              if (lat->gid[i] < lat->gid[j]) (*ncut_local)++;
-              continue;
-            }
-            PetscCall(PairListPush(pl, i, j));
-          }
-        }
   }
-  PetscCall(CellListDestroy(&cl));
   PetscFunctionReturn(0);
 }
 
@@ -244,17 +177,16 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &beta));
   for (PetscInt m = 0; m < sc->nmaterials; m++) c0[m] = PDMicromodulus(sc, sc->material[m].E);
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt   i = bd->a[e], j = bd->b[e], mi = lat->material[i], mj = lat->material[j];
-    const PetscReal *xi = &lat->x[3 * i], *xj = &lat->x[3 * j];
-    PetscReal        len = 0;
-    PetscInt         m;
-    for (PetscInt a = 0; a < 3; a++) len += (xj[a] - xi[a]) * (xj[a] - xi[a]);
-    len = PetscSqrtReal(len);
+    const PetscInt i = bd->a[e], j = bd->b[e], mi = lat->material[i], mj = lat->material[j];
+    PetscInt       d[3], n2, m;
+    /* length and partial volume from the exact lattice offset, in units of dx */
+    n2 = PDLatticeOffset(lat, i, j, d);
     /* a bond joining two materials takes the softer one: the interface is no stronger than its weaker side */
     m               = sc->material[mi].E <= sc->material[mj].E ? mi : mj;
     bd->material[e] = m;
-    beta[e]         = PartialVolumeFactor(sc, len, lat->horizon);
-    bd->coef[e]     = c0[m] * PDInfluenceValue(sc->influence, len, lat->horizon) * beta[e] * lat->cell_volume * lat->cell_volume;
+    beta[e]         = PDFamilyPartialVolume(sc->horizon_ratio, n2, sc->partial_volume);
+    bd->coef[e] = c0[m] * PDInfluenceValue(sc->influence, PetscSqrtReal((PetscReal)n2), sc->horizon_ratio) * beta[e] * lat->cell_volume *
+                  lat->cell_volume;
     if (PDBondCountedHere(lat, bd, e)) nonce++;
   }
   PetscCall(BuildIncidence(lat, bd));

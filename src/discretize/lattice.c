@@ -1,20 +1,97 @@
-/* The regular lattice: sizes, slab partition over ranks, owned and ghost nodes, materials. */
+/* The regular lattice: sizes, slab partition over ranks, owned and ghost nodes, materials, and the
+   stencil of lattice offsets that makes up a node's bond family. */
 #include "pd_lattice.h"
+
+PDFamilyMember PDFamilyRule(PetscReal m, PetscInt n2) {
+  const PetscReal m2 = m * m, d = (PetscReal)n2 - m2;
+
+  if (PetscAbsReal(d) <= 4 * PETSC_MACHINE_EPSILON * m2) return PD_FAMILY_EDGE;
+  return d < 0 ? PD_FAMILY_IN : PD_FAMILY_OUT;
+}
+
+PetscReal PDFamilyPartialVolume(PetscReal m, PetscInt n2, PetscBool partial_volume) {
+  PetscReal r;
+
+  if (!partial_volume) return 1;
+  if (PDFamilyRule(m, n2) == PD_FAMILY_EDGE) return 0.5;
+  r = PetscSqrtReal((PetscReal)n2);
+  return r <= m - 0.5 ? 1 : m + 0.5 - r;
+}
+
+/* Offsets (di, dj, dk) of the bond family, dk = 0 in 2D, in lexicographic order, and the reach along
+   one axis. Built once; the neighbour search walks it from every node. */
+static PetscErrorCode BuildStencil(PDLattice *lat, PetscReal m) {
+  const PetscInt R = (PetscInt)PetscFloorReal(m) + 1, Rz = lat->dim == 3 ? R : 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(4 * (2 * R + 1) * (2 * R + 1) * (2 * Rz + 1), &lat->stencil));
+  for (PetscInt di = -R; di <= R; di++)
+    for (PetscInt dj = -R; dj <= R; dj++)
+      for (PetscInt dk = -Rz; dk <= Rz; dk++) {
+        const PetscInt n2 = di * di + dj * dj + dk * dk;
+        PetscInt      *st = &lat->stencil[4 * lat->nstencil];
+        if (n2 == 0 || PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
+        st[0]      = di;
+        st[1]      = dj;
+        st[2]      = dk;
+        st[3]      = n2;
+        lat->reach = PetscMax(lat->reach, di);
+        lat->nstencil++;
+      }
+  PetscFunctionReturn(0);
+}
+
+void PDLatticeNodeIndices(const PDLattice *lat, PetscInt gid, PetscInt ijk[3]) {
+  ijk[2] = gid % lat->n[2];
+  ijk[1] = (gid / lat->n[2]) % lat->n[1];
+  ijk[0] = gid / (lat->n[1] * lat->n[2]);
+}
 
 static PetscInt LayerStart(PetscInt nx, PetscMPIInt size, PetscMPIInt rank) {
   return (PetscInt)(((PetscInt64)nx * rank) / size);
 }
 
 static void NodePosition(const PDLattice *lat, PetscInt gid, PetscReal x[3]) {
-  const PetscInt k = gid % lat->n[2], j = (gid / lat->n[2]) % lat->n[1], i = gid / (lat->n[1] * lat->n[2]);
-  x[0] = lat->origin[0] + i * lat->dx;
-  x[1] = lat->origin[1] + j * lat->dx;
-  x[2] = lat->dim == 3 ? lat->origin[2] + k * lat->dx : 0;
+  PetscInt ijk[3];
+
+  PDLatticeNodeIndices(lat, gid, ijk);
+  x[0] = lat->origin[0] + ijk[0] * lat->dx;
+  x[1] = lat->origin[1] + ijk[1] * lat->dx;
+  x[2] = lat->dim == 3 ? lat->origin[2] + ijk[2] * lat->dx : 0;
+}
+
+/* The ghost ranges: global ids [g[0], g[1]) below the owned slab and [g[2], g[3]) above it. */
+static void GhostRanges(const PDLattice *lat, PetscInt g[4]) {
+  const PetscInt layer = lat->n[1] * lat->n[2];
+
+  g[0] = PetscMax(0, lat->layer_start - lat->reach) * layer;
+  g[1] = lat->layer_start * layer;
+  g[2] = lat->layer_end * layer;
+  g[3] = PetscMin(lat->n[0], lat->layer_end + lat->reach) * layer;
+}
+
+PetscInt PDLatticeLocalIndex(const PDLattice *lat, PetscInt gid) {
+  PetscInt g[4];
+
+  GhostRanges(lat, g);
+  if (gid >= g[1] && gid < g[2]) return gid - g[1];
+  if (gid >= g[0] && gid < g[1]) return lat->nowned + gid - g[0];
+  if (gid >= g[2] && gid < g[3]) return lat->nowned + (g[1] - g[0]) + gid - g[2];
+  return -1;
+}
+
+PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt d[3]) {
+  PetscInt a[3], b[3];
+
+  PDLatticeNodeIndices(lat, lat->gid[k], a);
+  PDLatticeNodeIndices(lat, lat->gid[l], b);
+  for (PetscInt c = 0; c < 3; c++) d[c] = b[c] - a[c];
+  return d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
 }
 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
-  PetscInt    layer, R, g0, g1, g2, g3;
+  PetscInt    layer, g[4];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(lat, sizeof *lat));
@@ -41,20 +118,15 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   lat->layer_end   = LayerStart(lat->n[0], size, rank + 1);
   lat->nowned      = (lat->layer_end - lat->layer_start) * layer;
   lat->gid_start   = lat->layer_start * layer;
-  /* ghosts: every node within one horizon, i.e. the R nearest layers on either side */
-  R           = (PetscInt)PetscFloorReal(sc->horizon_ratio * (1 + 1e-10));
-  g0          = PetscMax(0, lat->layer_start - R) * layer;
-  g1          = lat->layer_start * layer;
-  g2          = lat->layer_end * layer;
-  g3          = PetscMin(lat->n[0], lat->layer_end + R) * layer;
-  lat->nghost = (g1 - g0) + (g3 - g2);
+  /* ghosts: every node within one horizon, i.e. the reach nearest layers on either side */
+  PetscCall(BuildStencil(lat, sc->horizon_ratio));
+  GhostRanges(lat, g);
+  lat->nghost = (g[1] - g[0]) + (g[3] - g[2]);
   lat->nlocal = lat->nowned + lat->nghost;
   PetscCall(PetscMalloc3(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material));
-  {
-    PetscInt l = 0;
-    for (PetscInt g = g1; g < g2; g++) lat->gid[l++] = g;
-    for (PetscInt g = g0; g < g1; g++) lat->gid[l++] = g;
-    for (PetscInt g = g2; g < g3; g++) lat->gid[l++] = g;
+  for (PetscInt id = g[0]; id < g[3]; id++) {
+    const PetscInt l = PDLatticeLocalIndex(lat, id);
+    lat->gid[l]      = id;
   }
   for (PetscInt l = 0; l < lat->nlocal; l++) {
     NodePosition(lat, lat->gid[l], &lat->x[3 * l]);
@@ -71,6 +143,7 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
 PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree3(lat->gid, lat->x, lat->material));
+  PetscCall(PetscFree(lat->stencil));
   PetscFunctionReturn(0);
 }
 

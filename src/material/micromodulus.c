@@ -3,6 +3,7 @@
    c0 = 3E / (pi t I2) in plane stress and c0 = 16E / (5 pi t I2) in plane strain, I2 = int omega xi^2;
    these reproduce the constants printed in Hobbs Table 3.1 and Eq. 3.27/3.28. */
 #include "pd_material.h"
+#include "pd_lattice.h"
 
 PetscReal PDInfluenceValue(PDInfluence w, PetscReal len, PetscReal horizon) {
   const PetscReal r = len / horizon;
@@ -43,8 +44,9 @@ PetscReal PDMicromodulus(const PDScene *sc, PetscReal E) {
 /* The fracture energy the lattice releases across a plane, over the continuum value (Sec. 5.3's
    pi c delta^5 form): the sum of c omega beta V^2 |xi| over the bonds that cross a lattice plane midway
    between node layers, per unit area, against geo = pi c delta^5 I4 (3D) or 2 t c delta^4 I3 (2D).
-   Neighbours end at the horizon and the outer shell counts with its partial volume, so the lattice
-   misses part of the continuum integral: about 0.74 (2D) and 0.76 (3D) at delta = pi dx. */
+   Neighbours are the lattice's bond family, which ends at the horizon, and the outer shell counts with
+   its partial volume, so the lattice misses part of the continuum integral: about 0.74 (2D) and 0.76
+   (3D) at delta = pi dx. */
 PetscReal PDLatticeFractureRatio(const PDScene *sc) {
   const PetscReal m = sc->horizon_ratio;
   const PetscInt  R = (PetscInt)PetscCeilReal(m) + 1, nz = sc->dim == 3 ? R : 0;
@@ -55,11 +57,10 @@ PetscReal PDLatticeFractureRatio(const PDScene *sc) {
     for (PetscInt l = 0; l <= R; l++)
       for (PetscInt jy = -R; jy <= R; jy++)
         for (PetscInt jz = -nz; jz <= nz; jz++) {
-          const PetscReal dxx = (PetscReal)(k + l), len = PetscSqrtReal(dxx * dxx + (PetscReal)(jy * jy + jz * jz));
-          PetscReal       beta = 1;
-          if (len > m * (1 + 1e-10)) continue;
-          if (sc->partial_volume && len > m - 0.5) beta = m + 0.5 - len;
-          sum += PDInfluenceValue(sc->influence, len, m) * beta * len;
+          const PetscInt  n2  = (k + l) * (k + l) + jy * jy + jz * jz;
+          const PetscReal len = PetscSqrtReal((PetscReal)n2);
+          if (PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
+          sum += PDInfluenceValue(sc->influence, len, m) * PDFamilyPartialVolume(m, n2, sc->partial_volume) * len;
         }
   geo = sc->dim == 3 ? PETSC_PI * PDInfluenceMoment(sc->influence, 4) * PetscPowReal(m, 5)
                      : 2 * PDInfluenceMoment(sc->influence, 3) * PetscPowReal(m, 4);
