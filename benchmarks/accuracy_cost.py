@@ -24,9 +24,9 @@ import os
 import subprocess
 import tempfile
 
-from common import EXE, OUT, ROOT, experiment as experiment_rows, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, experiment as experiment_rows, load_results, run_timed, store_result
 
-RESULTS = os.path.join(OUT, "accuracy_cost.json")
+RESULTS = os.path.join(RESULTS_DIR, "accuracy_cost.json")
 PI = "3.141592653589793"
 
 EXPLICIT = {

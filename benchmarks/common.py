@@ -9,7 +9,10 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # PDIMPLICIT lets a long study run a copy of the binary while the build tree is rebuilt
 EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
-OUT = os.path.join(ROOT, "docs", "benchmarks")
+# committed results (JSON) are read from RESULTS_DIR; tables and plots go to OUT, the same folder unless
+# PD_REPORT_DIR names another (tests/test_docs_tables.py regenerates the tables there and compares)
+RESULTS_DIR = os.path.join(ROOT, "docs", "benchmarks")
+OUT = os.environ.get("PD_REPORT_DIR", RESULTS_DIR)
 # Open MPI refuses to start as root without these (CI runs as root)
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 

@@ -13,7 +13,7 @@ import sys
 import tempfile
 import time
 
-from common import ENV, EXE, OUT, ROOT
+from common import RESULTS_DIR, ENV, EXE, OUT, ROOT
 
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 # the scene's elastic response, one linear solve for a 50 um deflection; partial volumes in the surface
@@ -115,6 +115,6 @@ def write_report(rows):
 
 if __name__ == "__main__":
     if "--report" in sys.argv:
-        write_report(json.load(open(os.path.join(OUT, "elastic.json"))))
+        write_report(json.load(open(os.path.join(RESULTS_DIR, "elastic.json"))))
     else:
         main()

@@ -16,9 +16,9 @@ import json
 import os
 import tempfile
 
-from common import EXE, OUT, ROOT, experiment, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, experiment, load_results, run_timed, store_result
 
-RESULTS = os.path.join(OUT, "gregoire.json")
+RESULTS = os.path.join(RESULTS_DIR, "gregoire.json")
 
 BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
 LAWS = ["linear", "bilinear", "trilinear", "nonlinear"]
@@ -73,9 +73,9 @@ def run_one(beam, law, dx, extra, ranks, timeout):
 def load_all():
     """Every results file (gregoire*.json): runs on different spacings can go to different files, in parallel."""
     res = {}
-    for name in sorted(os.listdir(OUT)):
+    for name in sorted(os.listdir(RESULTS_DIR)):
         if name.startswith("gregoire") and name.endswith(".json"):
-            res.update(load_results(os.path.join(OUT, name)))
+            res.update(load_results(os.path.join(RESULTS_DIR, name)))
     return res
 
 

@@ -24,12 +24,12 @@ import re
 import sys
 import tempfile
 
-from common import EXE, OUT, ROOT, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, load_results, run_timed, store_result
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import gregoire_scenes  # noqa: E402 (scripts/ is a folder of scripts, not a package)
 
-RESULTS = os.path.join(OUT, "size_effect.json")
+RESULTS = os.path.join(RESULTS_DIR, "size_effect.json")
 KINDS = {"un": "unnotched", "fn": "notch 0.2 D", "hn": "notch 0.5 D"}
 THICKNESS = 0.05
 # Hobbs thesis Sec. 6.4 (explicit dynamics, dx = 5 mm): unnotched peak over experiment

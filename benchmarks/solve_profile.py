@@ -13,9 +13,9 @@ import os
 import re
 import tempfile
 
-from common import EXE, OUT, ROOT, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, load_results, run_timed, store_result
 
-RESULTS = os.path.join(OUT, "solve_profile.json")
+RESULTS = os.path.join(RESULTS_DIR, "solve_profile.json")
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 # configurations compared: label -> extra options
 CONFIGS = {"default": [], "no predictor": ["-pd_predictor", "false"],
