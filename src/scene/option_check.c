@@ -45,7 +45,7 @@ static void Closest(const char *given, char *best, size_t len) {
         if (pass == 1 && s->family == PD_FAMILY_NONE) break;
         PDSchemaInstance(s, 0, cand, sizeof cand);
       } else if (pass == 1) {
-        PDSchemaFamily(s->family, NULL, NULL, &first, &last);
+        PDSchemaFamily(s->family, NULL, NULL, NULL, &first, &last);
         PDSchemaInstance(s, k >= first && k <= last ? k : first, cand, sizeof cand);
       } else
         continue;
@@ -59,11 +59,11 @@ static void Closest(const char *given, char *best, size_t len) {
 }
 
 static void IndexMessage(const char *given, const PDOptionSpec *s, char *msg, size_t len) {
-  const char *prefix, *noun;
+  const char *prefix, *nouns;
   PetscInt    first, last;
 
-  PDSchemaFamily(s->family, &prefix, &noun, &first, &last);
-  snprintf(msg, len, "Option %s: %ss are numbered %d to %d (%s%d to %s%d)%s", given, noun, (int)first, (int)last, prefix, (int)first,
+  PDSchemaFamily(s->family, &prefix, NULL, &nouns, &first, &last);
+  snprintf(msg, len, "Option %s: %s are numbered %d to %d (%s%d to %s%d)%s", given, nouns, (int)first, (int)last, prefix, (int)first,
            prefix, (int)last, s->family == PD_FAMILY_MATERIAL ? "; the base material's options are -pd_E, -pd_law, ..." : "");
 }
 
@@ -119,14 +119,14 @@ static PetscInt Members(PDOptionFamily f, const PDScene *sc) {
 static void UnusedMessage(const char *given, const PDScene *sc, char *msg, size_t len) {
   const PDOptionSpec *s;
   PetscInt            k, n;
-  const char         *prefix, *noun;
+  const char         *prefix, *noun, *nouns;
   char                what[96];
 
   if (PDSchemaMatch(given, &s, &k) != PD_MATCH_OK) return; /* PDOptionsCheckNames reports these */
   if (s->type == PD_OPTION_PREFIX && PDSchemaActive(s, k, sc)) return;
   n = s->family == PD_FAMILY_NONE ? 0 : Members(s->family, sc);
   if (s->family != PD_FAMILY_NONE && k >= n && !(s->family == PD_FAMILY_MATERIAL && k == 0)) {
-    PDSchemaFamily(s->family, &prefix, &noun, NULL, NULL);
+    PDSchemaFamily(s->family, &prefix, &noun, &nouns, NULL, NULL);
     if (s->family == PD_FAMILY_REGION)
       snprintf(what, sizeof what, "%s%d_box or %s%d_cylinder", prefix, (int)n, prefix, (int)n);
     else
@@ -134,8 +134,8 @@ static void UnusedMessage(const char *given, const PDScene *sc, char *msg, size_
     if (k == n)
       snprintf(msg, len, "Option %s: %s %d has no %s", given, noun, (int)k, what);
     else
-      snprintf(msg, len, "Option %s: there is no %s %d (%s), and %ss are numbered without gaps, so %s %d is not read", given, noun, (int)n,
-               what, noun, noun, (int)k);
+      snprintf(msg, len, "Option %s: there is no %s %d (%s), and %s are numbered without gaps, so %s %d is not read", given, noun, (int)n,
+               what, nouns, noun, (int)k);
   } else if (!PDSchemaActive(s, k, sc))
     snprintf(msg, len, "Option %s is not used by this scene: it applies to %s", given, PDSchemaWhenText(s->when));
   else

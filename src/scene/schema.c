@@ -6,18 +6,19 @@
 #include <strings.h>
 
 static const struct {
-  const char *prefix, *noun;
+  const char *prefix, *noun, *nouns;
   PetscInt    first, last;
 } Families[] = {
-    [PD_FAMILY_NONE]     = {"", "", 0, 0},
-    [PD_FAMILY_MATERIAL] = {"-pd_material", "material", 1, PD_MAX_MATERIALS - 1},
-    [PD_FAMILY_NOTCH]    = {"-pd_notch", "notch", 0, PD_MAX_NOTCHES - 1},
-    [PD_FAMILY_REGION]   = {"-pd_region", "region", 0, PD_MAX_REGIONS - 1},
+    [PD_FAMILY_NONE]     = {"", "", "", 0, 0},
+    [PD_FAMILY_MATERIAL] = {"-pd_material", "material", "materials", 1, PD_MAX_MATERIALS - 1},
+    [PD_FAMILY_NOTCH]    = {"-pd_notch", "notch", "notches", 0, PD_MAX_NOTCHES - 1},
+    [PD_FAMILY_REGION]   = {"-pd_region", "region", "regions", 0, PD_MAX_REGIONS - 1},
 };
 
-void PDSchemaFamily(PDOptionFamily f, const char **prefix, const char **noun, PetscInt *first, PetscInt *last) {
+void PDSchemaFamily(PDOptionFamily f, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last) {
   if (prefix) *prefix = Families[f].prefix;
   if (noun) *noun = Families[f].noun;
+  if (nouns) *nouns = Families[f].nouns;
   if (first) *first = Families[f].first;
   if (last) *last = Families[f].last;
 }

@@ -55,8 +55,8 @@ PDOptionMatch PDSchemaMatch(const char *name, const PDOptionSpec **spec, PetscIn
 /* Whether the scene read so far uses the option; a family member is used only once it exists. */
 PetscBool   PDSchemaActive(const PDOptionSpec *, PetscInt index, const PDScene *);
 const char *PDSchemaWhenText(PDOptionWhen);
-/* The family's prefix ("-pd_region"), the word for one member, and the indices allowed. */
-void PDSchemaFamily(PDOptionFamily, const char **prefix, const char **noun, PetscInt *first, PetscInt *last);
+/* The family's prefix ("-pd_region"), the words for one member and several, and the indices allowed. */
+void PDSchemaFamily(PDOptionFamily, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last);
 /* The option's name for one index ("-pd_region2_box", "-pd_E"), and as a pattern ("-pd_regionK_box"). */
 void PDSchemaInstance(const PDOptionSpec *, PetscInt index, char *buf, size_t len);
 void PDSchemaPattern(const PDOptionSpec *, char *buf, size_t len);
