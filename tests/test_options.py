@@ -126,8 +126,9 @@ def names():
         check(name in titles, "curve.svg parses, title %r" % titles[0])
         opts = s["options"]
         check(opts["-pd_dx"] == 0.02 and opts["-pd_horizon_ratio"] > 3.14 and opts["-pd_region1_force"] == [0, 0, -1e4]
-              and opts["-pd_region0_kind"] == "support" and "-pd_ramp_time" not in opts,
-              "summary.json echoes the options the scene read (%d of them)" % len(opts))
+              and opts["-pd_region0_kind"] == "support" and "-pd_ramp_time" not in opts
+              and "-pd_name" in s["options_given"] and "-pd_horizon_ratio" not in s["options_given"],
+              "summary.json echoes the options the scene read (%d of them, %d given)" % (len(opts), len(s["options_given"])))
     # a name that would leave the output root: refused, nothing written anywhere under the working directory
     for name in ["../../x", "a/b", "..", "x\ty"]:
         cwd = tempfile.mkdtemp(prefix="pdopt_")

@@ -74,7 +74,7 @@ static void JsonReal(char *buf, size_t len, PetscReal v) {
 
 /* The -pd_ options the scene read, given or by default, with their values: numbers and lists as JSON
    numbers and arrays, names and paths as strings. Options without a value (not given, and a default the
-   model works out or none) are left out. */
+   model works out or none) are left out. Then the names of those given (option names are plain ASCII). */
 static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
   PetscInt n = 0;
 
@@ -93,7 +93,11 @@ static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
     PetscCall(PetscFree(name));
     PetscCall(PetscFree(value));
   }
-  PetscCall(PetscFPrintf(comm, fp, "\n  },\n"));
+  PetscCall(PetscFPrintf(comm, fp, "\n  },\n  \"options_given\": ["));
+  n = 0;
+  for (PetscInt i = 0; i < sc->noptions; i++)
+    if (sc->options[i].set) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", n++ ? ", " : "", sc->options[i].name));
+  PetscCall(PetscFPrintf(comm, fp, "],\n"));
   PetscFunctionReturn(0);
 }
 
