@@ -2,8 +2,10 @@ static const char help[] = "pdimplicit: implicit quasi-static bond-based peridyn
                            "Usage: pdimplicit -options_file scene.opts [-pd_* overrides] [PETSc SNES/KSP/PC options]\n"
                            "Every -pd_ option is listed below, with its type, default and range, and whether the scene uses it.\n";
 
+#define _POSIX_C_SOURCE 200809L
 #include "pd_solve.h"
 #include <stdio.h>
+#include <time.h>
 
 /* Exit statuses: the run completed (or separated), bad input (nothing written), the run failed or stopped early. */
 enum { PD_EXIT_OK = 0, PD_EXIT_FAILED = 1, PD_EXIT_BAD_INPUT = 2 };
@@ -87,6 +89,22 @@ static PetscErrorCode Help(MPI_Comm comm) {
   PetscFunctionReturn(0);
 }
 
+/* After an error in the solve: whether every rank has failed, so that they can still report together.
+   A barrier on a communicator of its own (no other message can match it), given a minute; a rank that
+   failed alone is not waited for. */
+static PetscBool AllFailed(MPI_Comm agree) {
+  const struct timespec tick = {0, 10000000};
+  MPI_Request           req;
+  int                   done = 0;
+
+  if (MPI_Ibarrier(agree, &req) != MPI_SUCCESS) return PETSC_FALSE;
+  for (int i = 0; i < 6000; i++) {
+    if (MPI_Test(&req, &done, MPI_STATUS_IGNORE) != MPI_SUCCESS || done) break;
+    nanosleep(&tick, NULL);
+  }
+  return done ? PETSC_TRUE : PETSC_FALSE;
+}
+
 static PetscErrorCode Describe(Run *r) {
   const char    *names[5];
   const PetscInt n = PDModelEffects(&r->model, names);
@@ -155,13 +173,12 @@ static PetscErrorCode Report(Run *r) {
 int main(int argc, char **argv) {
   Run            r;
   PetscBool      markdown = PETSC_FALSE, help_asked = PETSC_FALSE, ok;
-  PetscMPIInt    size;
+  MPI_Comm       agree;
   PetscErrorCode ierr, ierr_report;
   char           msg[1024];
 
   if (PetscInitialize(&argc, &argv, NULL, help)) return PD_EXIT_BAD_INPUT; /* e.g. a missing options file, which PETSc reports */
   r.comm = PETSC_COMM_WORLD;
-  PetscCallMPI(MPI_Comm_size(r.comm, &size));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-pd_help_markdown", &markdown, NULL));
   PetscCall(PetscOptionsHasHelp(NULL, &help_asked));
   if (markdown || help_asked) {
@@ -178,10 +195,11 @@ int main(int argc, char **argv) {
   }
   PetscCall(Describe(&r));
   PetscCall(PDInterruptInstall()); /* SIGTERM, SIGINT, SIGHUP: finish the step, write what was traced */
-  /* a failed run: on one rank the summary says so; ranks that fail alone cannot report together */
+  PetscCallMPI(MPI_Comm_dup(r.comm, &agree));
+  /* a failed run: where every rank failed the summary says so; a rank that fails alone cannot report */
   PetscCall(Stage(Solve, &r, PETSC_COMM_SELF, msg, sizeof msg, &ierr));
   if (ierr) {
-    if (size > 1) MPI_Abort(r.comm, PD_EXIT_FAILED);
+    if (!AllFailed(agree)) MPI_Abort(r.comm, PD_EXIT_FAILED);
     r.rec.converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(r.rec.status, sizeof r.rec.status, "failed: %s", msg));
   }
@@ -193,6 +211,7 @@ int main(int argc, char **argv) {
   PetscCall(PDBondsDestroy(&r.bonds));
   PetscCall(PDLatticeDestroy(&r.lat));
   PetscCall(PDSceneDestroy(&r.sc));
+  PetscCallMPI(MPI_Comm_free(&agree));
   PetscCall(PetscFinalize());
   return ok ? PD_EXIT_OK : PD_EXIT_FAILED;
 }
