@@ -1,5 +1,6 @@
-/* Reporter: curve.csv, summary.json, fields.h5/.xmf, curve.svg, progress line. Files are written whole
-   (temporary name, then rename) by rank 0 or collectively for HDF5. */
+/* Reporter: curve.csv, summary.json, fields.h5/.xmf, curve.svg, progress line. curve.csv grows by one
+   flushed row per accepted step; the other files are written whole (temporary name, then rename) by
+   rank 0 or collectively for HDF5. */
 #pragma once
 #include "pd_model.h"
 
@@ -12,6 +13,9 @@ typedef struct {
 } PDCurveRow;
 
 typedef struct {
+  MPI_Comm    comm;
+  PetscMPIInt rank;
+  FILE       *curve; /* curve.csv, open on rank 0 from PDOutputPrepare to PDCurveClose */
   PetscInt    nrows, capacity;
   PDCurveRow *rows;
   PetscInt    steps, newton_its, ksp_its;
@@ -45,16 +49,29 @@ typedef struct {
 } PDRecord;
 
 PetscErrorCode PDRecordCreate(MPI_Comm, const PDScene *, PDRecord *);
+/* Rows go to the record and, flushed, to curve.csv; clearing starts the curve afresh (a new trial, the rows
+   of a checkpoint). */
 PetscErrorCode PDRecordAddRow(PDRecord *, const PDCurveRow *);
+PetscErrorCode PDRecordClearRows(PDRecord *);
 PetscErrorCode PDRecordDestroy(PDRecord *);
+/* Before anything is built: the output directory is a writable directory, or can be made one. */
+PetscErrorCode PDOutputCheck(MPI_Comm, const PDScene *);
+/* Creates the output directory and starts curve.csv. */
 PetscErrorCode PDOutputPrepare(MPI_Comm, const PDScene *, PDRecord *);
+/* Removes temporary files a failed write may have left. */
+PetscErrorCode PDOutputDiscardTemporary(PDRecord *);
 PetscErrorCode PDFieldsWrite(PDModel *, PDRecord *, PetscInt step, Vec u);
 PetscErrorCode PDFieldsFinish(PDModel *, PDRecord *);
-PetscErrorCode PDCurveWrite(MPI_Comm, const PDScene *, const PDRecord *);
+PetscErrorCode PDCurveStart(PDRecord *);
+PetscErrorCode PDCurveAppend(PDRecord *, const PDCurveRow *);
+PetscErrorCode PDCurveClose(PDRecord *);
 PetscErrorCode PDSummaryWrite(MPI_Comm, const PDModel *, const PDRecord *);
 PetscErrorCode PDCurvePlotWrite(MPI_Comm, const PDScene *, const PDRecord *);
 PetscErrorCode PDProgress(MPI_Comm, const PDScene *, const PDCurveRow *, PetscBool last);
 PetscErrorCode PDFileCommit(MPI_Comm, const char *dir, const char *name);
+/* User text escaped into a new string (PetscFree it): a quoted JSON string, or XML text and attribute. */
+PetscErrorCode PDEscapeJSON(const char *, char **);
+PetscErrorCode PDEscapeXML(const char *, char **);
 /* checkpoint.h5: a path's state at an accepted step (-pd_checkpoint_every, -pd_restart); kappa_prev: the
    bond history a step earlier, kept where the driver extrapolates histories (NULL: none) */
 PetscErrorCode PDCheckpointValidate(const PDModel *, const char *path);

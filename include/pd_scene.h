@@ -22,6 +22,16 @@ typedef enum { PD_PC_MATRIX_TANGENT, PD_PC_MATRIX_SECANT } PDPCMatrix;
 typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
 typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
 typedef enum { PD_FAILURE_DAMAGE, PD_FAILURE_VELOCITY, PD_FAILURE_FORCE } PDFailureCriterion;
+/* Value types of the option schema (src/scene/schema.h). A prefix stands for the options of a PETSc object. */
+typedef enum {
+  PD_OPTION_REAL,
+  PD_OPTION_INT,
+  PD_OPTION_BOOL,
+  PD_OPTION_ENUM,
+  PD_OPTION_STRING,
+  PD_OPTION_REALS,
+  PD_OPTION_PREFIX
+} PDOptionType;
 
 extern const char *const PDModelKinds[];
 extern const char *const PDInfluences[];
@@ -35,6 +45,18 @@ extern const char *const PDPCMatrixNames[];
 extern const char *const PDShapes[];
 extern const char *const PDRegionKinds[];
 extern const char *const PDFailureCriteria[];
+extern const char *const PDModes[];
+extern const char *const PDMatTypes[];
+
+/* An option the scene read, for the echo in summary.json: the value in canonical text (reals as the
+   shortest text that reads back exactly, lists comma-separated, names as the schema spells them), or
+   NULL where the value is not known before the model is built. */
+typedef struct {
+  char         name[48];
+  PDOptionType type;
+  PetscBool    set; /* given in the options, not the default */
+  char        *value;
+} PDOptionValue;
 
 /* Geometry shared by materials and node regions. A box that has zero extent along an axis selects
    the layer of nodes whose cells it cuts (nodes within dx/2 of that plane). */
@@ -126,7 +148,8 @@ typedef struct {
   PetscInt   checkpoint_every;            /* path following: write checkpoint.h5 every N accepted steps; 0: only when stopped early */
   char       restart[PETSC_MAX_PATH_LEN]; /* path following: checkpoint to go on from, or empty */
   PetscBool  progress;
-  PetscBool  dry_run; /* build the scene and report it, do not solve */
+  PetscBool  dry_run;     /* build the scene and report it, do not solve */
+  char       mat_type[8]; /* stiffness storage (-pd_mat_type), or empty for the default */
   /* explicit path (-pd_mode explicit) */
   PetscBool explicit_mode;
   PetscReal ramp_time;  /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */
@@ -144,9 +167,19 @@ typedef struct {
   PetscReal          failure_ftol;       /* force decay: mean out-of-balance over applied force at the loaded nodes */
   PetscReal          failure_dtol;       /* bond damage: fraction of bonds broken per time step counted as still */
   PetscReal          failure_window;     /* bond damage: time (s) damage stays still, or load and velocity stay aligned */
+  PetscInt           noptions;           /* options read, in the order read */
+  PDOptionValue     *options;
 } PDScene;
 
+/* Reads and validates the scene. Every -pd_ option given must belong to the schema and be used by the
+   scene; anything else is an input error naming the option (and the closest valid name). */
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);
+PetscErrorCode PDSceneDestroy(PDScene *);
+/* -help: every -pd_ option with its type, default, range and help, and whether the scene (NULL: none
+   could be read, for the reason in note) uses it. */
+PetscErrorCode PDSceneOptionsHelp(MPI_Comm, const PDScene *, const char *note);
+/* The README's option table, in Markdown (-pd_help_markdown). */
+PetscErrorCode PDSceneOptionsMarkdown(MPI_Comm);
 PetscErrorCode PDSceneView(const PDScene *, PetscViewer);
 /* Whether a region holds the node at x. A box with zero extent along an axis selects one layer of nodes:
    the nearest to its plane; a plane halfway between two layers takes the upper one, except on the

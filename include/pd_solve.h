@@ -8,6 +8,9 @@ PetscErrorCode PDArcLengthRun(PDModel *, PDRecord *);
 PetscErrorCode PDSolverConfigureKSP(PDModel *, KSP);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
 PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);
+/* SIGTERM, SIGINT and SIGHUP end a run after the step under way (src/solve/interrupt.c). */
 PetscErrorCode PDInterruptInstall(void);
 PetscErrorCode PDInterrupted(MPI_Comm, PetscBool *);
 PetscErrorCode PDStopOnSignal(MPI_Comm, PDRecord *, PetscBool *);
+/* The name of the signal PDInterrupted saw, for statuses. */
+const char *PDInterruptSignal(void);

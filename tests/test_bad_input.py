@@ -1,4 +1,4 @@
-"""Bad input: each case exits non-zero before any solve, names the offending option in its message,
+"""Bad input: each case exits with status 2 before any solve, names the offending option in its message,
 and leaves no output behind."""
 import os
 import shutil
@@ -67,13 +67,13 @@ def main():
         r = run(name, *args, expect_ok=False, outdir=out)
         msg = (r.stdout + r.stderr).strip().splitlines()
         first = next((l for l in msg if needle in l), msg[-1] if msg else "")
-        check(r.returncode != 0 and needle in r.stderr and not os.path.exists(out),
+        check(r.returncode == 2 and needle in r.stderr and not os.path.exists(out),
               "%-14s %-45s exit %d, no output, says: %s" % (name, " ".join(args)[:45], r.returncode, first.strip()[:110]))
         shutil.rmtree(os.path.dirname(out))
     # a missing options file is reported by PETSc with the file name
     out = os.path.join(tempfile.mkdtemp(prefix="pdbad_"), "out")
     r = run(None, "-options_file", "no_such_scene.opts", expect_ok=False, outdir=out)
-    check(r.returncode != 0 and "no_such_scene.opts" in r.stderr and not os.path.exists(out), "missing options file: exit %d" % r.returncode)
+    check(r.returncode == 2 and "no_such_scene.opts" in r.stderr and not os.path.exists(out), "missing options file: exit %d" % r.returncode)
 
 
 if __name__ == "__main__":

@@ -94,6 +94,7 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscCall(PDModelDestroy(&m));
   PetscCall(PDBondsDestroy(&bd));
   PetscCall(PDLatticeDestroy(&lat));
+  PetscCall(PDSceneDestroy(&sc));
   PetscFunctionReturn(0);
 }
 

@@ -259,7 +259,7 @@ static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, Pet
   PetscCall(VecScatterBegin(toall, R, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(toall, R, all, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(all, &a));
-  rec->nrows = 0;
+  PetscCall(PDRecordClearRows(rec));
   for (PetscInt r = 0; r < nrows; r++) {
     PDCurveRow row;
     RowUnpack(a + r * ROW_FIELDS, &row);

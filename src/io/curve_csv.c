@@ -1,27 +1,44 @@
-/* curve.csv: one row per converged step, columns fixed by the stable interface. */
+/* curve.csv: one row per converged step, columns fixed by the stable interface. Each row is appended and
+   flushed as the step is accepted, so the file holds every step done even if the process dies. */
 #include "pd_io.h"
+#include <errno.h>
+#include <string.h>
 
-PetscErrorCode PDCurveWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *rec) {
-  FILE *fp;
-  char  path[PETSC_MAX_PATH_LEN];
+/* (Re)starts the file with its header: when the output is prepared, and when the rows are cleared. */
+PetscErrorCode PDCurveStart(PDRecord *rec) {
+  char path[PETSC_MAX_PATH_LEN];
 
   PetscFunctionBeginUser;
-  (void)sc;
-  PetscCall(PetscSNPrintf(path, sizeof path, "%s/curve.csv.tmp", rec->dir));
-  PetscCall(PetscFOpen(comm, path, "w", &fp));
-  PetscCall(PetscFPrintf(
-      comm, fp,
-      "step,lambda,load_N,disp_m,cmod_m,broken_bonds,newton_its,ksp_its,wall_s,external_J,stored_J,dissipated_J,kinetic_J,damped_J\n"));
-  for (PetscInt k = 0; k < rec->nrows; k++) {
-    const PDCurveRow *r = &rec->rows[k];
-    PetscCall(PetscFPrintf(comm, fp,
-                           "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT
-                           ",%.4f,%.10g,%.10g,%.10g,%.10g,%.10g\n",
-                           r->step, (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its,
-                           r->ksp_its, (double)r->wall, (double)r->external, (double)r->stored, (double)r->dissipated, (double)r->kinetic,
-                           (double)r->damped));
+  if (rec->rank) PetscFunctionReturn(0);
+  if (rec->curve) fclose(rec->curve);
+  PetscCall(PetscSNPrintf(path, sizeof path, "%s/curve.csv", rec->dir));
+  rec->curve = fopen(path, "w");
+  PetscCheck(rec->curve, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: %s", path, strerror(errno));
+  fprintf(rec->curve,
+          "step,lambda,load_N,disp_m,cmod_m,broken_bonds,newton_its,ksp_its,wall_s,external_J,stored_J,dissipated_J,kinetic_J,damped_J\n");
+  PetscCheck(fflush(rec->curve) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s: %s", path, strerror(errno));
+  PetscFunctionReturn(0);
+}
+
+/* C's fprintf, not PETSc's: PETSc's appends '.' to whole numbers. */
+PetscErrorCode PDCurveAppend(PDRecord *rec, const PDCurveRow *r) {
+  PetscFunctionBeginUser;
+  if (!rec->curve) PetscFunctionReturn(0);
+  fprintf(rec->curve,
+          "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT
+          ",%.4f,%.10g,%.10g,%.10g,%.10g,%.10g\n",
+          r->step, (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its, r->ksp_its,
+          (double)r->wall, (double)r->external, (double)r->stored, (double)r->dissipated, (double)r->kinetic, (double)r->damped);
+  PetscCheck(fflush(rec->curve) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s/curve.csv: %s", rec->dir, strerror(errno));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDCurveClose(PDRecord *rec) {
+  PetscFunctionBeginUser;
+  if (rec->curve) {
+    const int err = fclose(rec->curve);
+    rec->curve    = NULL;
+    PetscCheck(err == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s/curve.csv: %s", rec->dir, strerror(errno));
   }
-  PetscCall(PetscFClose(comm, fp));
-  PetscCall(PDFileCommit(comm, rec->dir, "curve.csv"));
   PetscFunctionReturn(0);
 }

@@ -64,7 +64,7 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
 PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec) {
   MPI_Comm comm = m->lat->comm;
   FILE    *fp;
-  char     path[PETSC_MAX_PATH_LEN];
+  char     path[PETSC_MAX_PATH_LEN], *name;
   PetscInt N = m->lat->nglobal;
 
   PetscFunctionBeginUser;
@@ -74,7 +74,9 @@ PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec) {
   PetscCall(PetscSNPrintf(path, sizeof path, "%s/fields.xmf.tmp", rec->dir));
   PetscCall(PetscFOpen(comm, path, "w", &fp));
   PetscCall(PetscFPrintf(comm, fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"3.0\">\n <Domain>\n"));
-  PetscCall(PetscFPrintf(comm, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", m->scene->name));
+  PetscCall(PDEscapeXML(m->scene->name, &name));
+  PetscCall(PetscFPrintf(comm, fp, "  <Grid Name=\"%s\" GridType=\"Collection\" CollectionType=\"Temporal\">\n", name));
+  PetscCall(PetscFree(name));
   for (PetscInt k = 0; k < rec->nfield_steps; k++) {
     const PetscInt s = rec->field_steps[k];
     PetscCall(PetscFPrintf(

@@ -54,7 +54,7 @@ static PetscReal NiceStep(PetscReal range) {
 PetscErrorCode PDCurvePlotWrite(MPI_Comm comm, const PDScene *sc, const PDRecord *rec) {
   PetscMPIInt rank;
   FILE       *fp;
-  char        path[PETSC_MAX_PATH_LEN];
+  char        path[PETSC_MAX_PATH_LEN], *title;
   ExpCurve    ex   = {0, NULL, NULL, NULL, NULL};
   PetscReal   xmax = 0, ymax = 0, ymin = 0, sx, sy, step;
   PetscBool   use_cmod = sc->has_cmod;
@@ -83,8 +83,10 @@ PetscErrorCode PDCurvePlotWrite(MPI_Comm comm, const PDScene *sc, const PDRecord
     PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
     fprintf(fp, "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" font-family=\"sans-serif\" font-size=\"12\">\n", W,
             H);
+    PetscCall(PDEscapeXML(sc->name, &title));
     fprintf(fp, "<rect width=\"100%%\" height=\"100%%\" fill=\"white\"/>\n<text x=\"%g\" y=\"18\" text-anchor=\"middle\">%s</text>\n",
-            W / 2, sc->name);
+            W / 2, title);
+    PetscCall(PetscFree(title));
 #define PX(v) (ML + (v)*sx)
 #define PY(v) (H - MB - ((v)-ymin) * sy)
     step = NiceStep(xmax);

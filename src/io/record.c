@@ -1,17 +1,20 @@
-/* The run record (curve rows, counters, timings) and the output directory. Every file is written under
-   a temporary name and renamed once complete, so a reader never sees half a file. */
+/* The run record (curve rows, counters, timings) and the output directory. curve.csv grows row by row;
+   every other file is written under a temporary name and renamed once complete, so a reader never sees
+   half a file. */
 #include "pd_io.h"
 #include <errno.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 PetscErrorCode PDRecordCreate(MPI_Comm comm, const PDScene *sc, PDRecord *rec) {
   PetscLogDouble t;
 
   PetscFunctionBeginUser;
-  (void)comm;
   PetscCall(PetscMemzero(rec, sizeof *rec));
+  rec->comm = comm;
+  PetscCallMPI(MPI_Comm_rank(comm, &rec->rank));
   PetscCall(PetscStrncpy(rec->dir, sc->output_dir, sizeof rec->dir));
   PetscCall(PetscTime(&t));
   rec->t_start = t;
@@ -25,26 +28,75 @@ PetscErrorCode PDRecordAddRow(PDRecord *rec, const PDCurveRow *row) {
     PetscCall(PetscRealloc(sizeof(PDCurveRow) * rec->capacity, &rec->rows));
   }
   rec->rows[rec->nrows++] = *row;
+  PetscCall(PDCurveAppend(rec, row));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDRecordClearRows(PDRecord *rec) {
+  PetscFunctionBeginUser;
+  rec->nrows = 0;
+  if (rec->curve) PetscCall(PDCurveStart(rec));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode PDRecordDestroy(PDRecord *rec) {
   PetscFunctionBeginUser;
+  PetscCall(PDCurveClose(rec));
   PetscCall(PetscFree(rec->rows));
   PetscCall(PetscFree(rec->field_steps));
   PetscCall(PetscViewerDestroy(&rec->h5));
   PetscFunctionReturn(0);
 }
 
+/* Why the directory cannot take the output, or NULL: it exists and is a writable directory, or its
+   nearest existing ancestor is one (it will be created there). */
+static const char *OutputProblem(const char *dir, char *where, size_t len) {
+  struct stat st;
+  char       *slash;
+
+  snprintf(where, len, "%s", dir);
+  while (stat(where, &st)) {
+    if (errno != ENOENT && errno != ENOTDIR) return "not accessible";
+    slash = strrchr(where, '/');
+    while (slash && slash > where && slash[1] == '\0') { /* a trailing '/' */
+      *slash = '\0';
+      slash  = strrchr(where, '/');
+    }
+    if (!slash)
+      snprintf(where, len, ".");
+    else if (slash == where)
+      slash[1] = '\0';
+    else
+      *slash = '\0';
+  }
+  if (!S_ISDIR(st.st_mode)) return "not a directory";
+  if (access(where, W_OK | X_OK)) return "not writable";
+  return NULL;
+}
+
+PetscErrorCode PDOutputCheck(MPI_Comm comm, const PDScene *sc) {
+  PetscMPIInt rank;
+  char        msg[PETSC_MAX_PATH_LEN + 64] = "";
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    char        where[PETSC_MAX_PATH_LEN];
+    const char *why = OutputProblem(sc->output_dir, where, sizeof where);
+    if (why) snprintf(msg, sizeof msg, "'%s' is %s", where, why);
+  }
+  PetscCallMPI(MPI_Bcast(msg, (PetscMPIInt)sizeof msg, MPI_CHAR, 0, comm));
+  PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "Option -pd_output_dir: cannot write to '%s': %s", sc->output_dir, msg);
+  PetscFunctionReturn(0);
+}
+
 /* mkdir -p on rank 0; every rank learns the outcome. */
 PetscErrorCode PDOutputPrepare(MPI_Comm comm, const PDScene *sc, PDRecord *rec) {
-  PetscMPIInt rank;
-  int         err = 0;
+  int err = 0;
 
   PetscFunctionBeginUser;
   (void)sc;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) {
+  if (rec->rank == 0) {
     char path[PETSC_MAX_PATH_LEN];
     PetscCall(PetscStrncpy(path, rec->dir, sizeof path));
     for (char *p = path + 1; *p && !err; p++)
@@ -57,6 +109,21 @@ PetscErrorCode PDOutputPrepare(MPI_Comm comm, const PDScene *sc, PDRecord *rec) 
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
   PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Option -pd_output_dir: cannot create '%s': %s", rec->dir, strerror(err));
+  PetscCall(PDCurveStart(rec));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDOutputDiscardTemporary(PDRecord *rec) {
+  static const char *const names[] = {"curve.svg", "summary.json", "fields.h5", "fields.xmf", "checkpoint.h5"};
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerDestroy(&rec->h5));
+  if (rec->rank) PetscFunctionReturn(0);
+  for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+    char path[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(path, sizeof path, "%s/%s.tmp", rec->dir, names[i]));
+    (void)unlink(path);
+  }
   PetscFunctionReturn(0);
 }
 

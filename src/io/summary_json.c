@@ -72,10 +72,39 @@ static void JsonReal(char *buf, size_t len, PetscReal v) {
     snprintf(buf, len, "%.10e", (double)v);
 }
 
+/* The -pd_ options the scene read, given or by default, with their values: numbers and lists as JSON
+   numbers and arrays, names and paths as strings. Options without a value (not given, and a default the
+   model works out or none) are left out. Then the names of those given (option names are plain ASCII). */
+static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
+  PetscInt n = 0;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFPrintf(comm, fp, "  \"options\": {"));
+  for (PetscInt i = 0; i < sc->noptions; i++) {
+    const PDOptionValue *v      = &sc->options[i];
+    const PetscBool      quoted = v->type == PD_OPTION_ENUM || v->type == PD_OPTION_STRING ? PETSC_TRUE : PETSC_FALSE;
+    const PetscBool      list   = v->type == PD_OPTION_REALS ? PETSC_TRUE : PETSC_FALSE;
+    char                *name, *value = NULL;
+    if (!v->value) continue;
+    PetscCall(PDEscapeJSON(v->name, &name));
+    if (quoted) PetscCall(PDEscapeJSON(v->value, &value));
+    PetscCall(
+        PetscFPrintf(comm, fp, "%s\n    %s: %s%s%s", n++ ? "," : "", name, list ? "[" : "", quoted ? value : v->value, list ? "]" : ""));
+    PetscCall(PetscFree(name));
+    PetscCall(PetscFree(value));
+  }
+  PetscCall(PetscFPrintf(comm, fp, "\n  },\n  \"options_given\": ["));
+  n = 0;
+  for (PetscInt i = 0; i < sc->noptions; i++)
+    if (sc->options[i].set) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", n++ ? ", " : "", sc->options[i].name));
+  PetscCall(PetscFPrintf(comm, fp, "],\n"));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *rec) {
   const PDScene *sc = m->scene;
   FILE          *fp;
-  char           path[PETSC_MAX_PATH_LEN], peak[32], dpeak[32], fin[32];
+  char           path[PETSC_MAX_PATH_LEN], peak[32], dpeak[32], fin[32], *text;
   PetscMPIInt    size;
   PetscReal      pk = PETSC_MIN_REAL, dpk = PD_NAN, last = PD_NAN, mem, wall;
   PetscLogDouble now;
@@ -99,8 +128,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   wall = now - rec->t_start;
   PetscCall(PetscSNPrintf(path, sizeof path, "%s/summary.json.tmp", rec->dir));
   PetscCall(PetscFOpen(comm, path, "w", &fp));
-  PetscCall(PetscFPrintf(comm, fp, "{\n  \"scene\": \"%s\",\n  \"mode\": \"%s\",\n  \"ranks\": %d,\n", sc->name,
+  PetscCall(PDEscapeJSON(sc->name, &text));
+  PetscCall(PetscFPrintf(comm, fp, "{\n  \"scene\": %s,\n  \"mode\": \"%s\",\n  \"ranks\": %d,\n", text,
                          sc->explicit_mode ? "explicit" : "implicit", size));
+  PetscCall(PetscFree(text));
   if (sc->explicit_mode)
     PetscCall(PetscFPrintf(
         comm, fp,
@@ -112,10 +143,13 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
     PetscCall(PetscFPrintf(
         comm, fp, "  \"failure_search\": {\"criterion\": \"%s\", \"tolerance\": %.6e, \"lower_N\": %.6e, \"upper_N\": %.6e, \"trials\": [",
         PDFailureCriteria[sc->failure_criterion], (double)sc->failure_tol, (double)rec->fail_lower, (double)rec->fail_upper));
-    for (PetscInt k = 0; k < rec->ntrials; k++)
-      PetscCall(PetscFPrintf(comm, fp, "%s\n    {\"load_N\": %.6e, \"carried\": %s, \"time_steps\": %" PetscInt_FMT ", \"reason\": \"%s\"}",
+    for (PetscInt k = 0; k < rec->ntrials; k++) {
+      PetscCall(PDEscapeJSON(rec->trial[k].why, &text));
+      PetscCall(PetscFPrintf(comm, fp, "%s\n    {\"load_N\": %.6e, \"carried\": %s, \"time_steps\": %" PetscInt_FMT ", \"reason\": %s}",
                              k ? "," : "", (double)rec->trial[k].load, rec->trial[k].verdict > 0 ? "true" : "false", rec->trial[k].steps,
-                             rec->trial[k].why));
+                             text));
+      PetscCall(PetscFree(text));
+    }
     PetscCall(PetscFPrintf(comm, fp, "]},\n"));
   }
   PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
@@ -129,8 +163,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT
                          ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n",
                          m->nconstrained, m->nzero_dofs, m->nisolated));
-  PetscCall(PetscFPrintf(comm, fp, "  \"solver\": \"%s\",\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT ",\n", rec->solver,
+  PetscCall(PDEscapeJSON(rec->solver, &text));
+  PetscCall(PetscFPrintf(comm, fp, "  \"solver\": %s,\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT ",\n", text,
                          m->linear ? "true" : "false", m->jacobian_assemblies));
+  PetscCall(PetscFree(text));
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n",
                          rec->steps, rec->newton_its, rec->ksp_its));
@@ -140,9 +176,11 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          m->broken, m->softening_bonds, rec->max_events_per_its, m->max_regularised));
   PetscCall(PetscFPrintf(comm, fp, "  \"peak_load_N\": %s,\n  \"disp_at_peak_m\": %s,\n  \"final_load_N\": %s,\n", peak, dpeak, fin));
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
-  if (rec->restart_from[0])
-    PetscCall(
-        PetscFPrintf(comm, fp, "  \"restart\": {\"from\": \"%s\", \"step\": %" PetscInt_FMT "},\n", rec->restart_from, rec->restart_step));
+  if (rec->restart_from[0]) {
+    PetscCall(PDEscapeJSON(rec->restart_from, &text));
+    PetscCall(PetscFPrintf(comm, fp, "  \"restart\": {\"from\": %s, \"step\": %" PetscInt_FMT "},\n", text, rec->restart_step));
+    PetscCall(PetscFree(text));
+  }
   PetscCall(PetscFPrintf(comm, fp, "  \"timings\": {\"setup\": %.4f, \"assembly\": %.4f, \"solve\": %.4f, \"output\": %.4f},\n",
                          (double)rec->t_setup, (double)m->t_assembly, (double)rec->t_solve, (double)rec->t_output));
   {
@@ -157,7 +195,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                            ", \"matrix_nonzeros\": %.0f, \"estimated_bytes\": %.0f, \"peak_rss_bytes\": %.0f},\n",
                            m->history_bytes, (double)rec->matrix_nonzeros, (double)est, (double)mem));
   }
-  PetscCall(PetscFPrintf(comm, fp, "  \"converged\": %s,\n  \"status\": \"%s\"\n}\n", rec->converged ? "true" : "false", rec->status));
+  PetscCall(WriteOptions(comm, fp, sc));
+  PetscCall(PDEscapeJSON(rec->status, &text));
+  PetscCall(PetscFPrintf(comm, fp, "  \"converged\": %s,\n  \"status\": %s\n}\n", rec->converged ? "true" : "false", text));
+  PetscCall(PetscFree(text));
   PetscCall(PetscFClose(comm, fp));
   PetscCall(PDFileCommit(comm, rec->dir, "summary.json"));
   PetscFunctionReturn(0);

@@ -47,8 +47,10 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
   PetscCall(MatSetBlockSize(*J, bs));
   /* Symmetric block storage moves the fewest bytes per mat-vec and is the fastest with CG + ICC
      (docs/benchmarks/elastic.md). GAMG in PETSc 3.18 builds its graph from AIJ only, so choosing it
-     switches the default storage to AIJ. -pd_mat_type overrides either choice. */
-  {
+     switches the default storage to AIJ. -pd_mat_type (read with the scene) overrides either choice. */
+  if (m->scene->mat_type[0])
+    PetscCall(MatSetType(*J, m->scene->mat_type));
+  else {
     char      pctype[64] = "";
     PetscBool gamg       = PETSC_FALSE, set;
     PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &set));
@@ -56,8 +58,6 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
     if (!set) gamg = PDModelDefaultsToGAMG(m); /* the default of PDSolverConfigureKSP */
     PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
   }
-  PetscCall(MatSetOptionsPrefix(*J, "pd_"));
-  PetscCall(MatSetFromOptions(*J)); /* -pd_mat_type aij|baij|sbaij */
   PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));
   PetscCall(PetscFree4(dnnz, onnz, dnnzu, onnzu));
   PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));

@@ -381,8 +381,8 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
   c->stopped = c->cmod_reached = c->blew_up = c->interrupted = PETSC_FALSE;
   if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
-  m->broken     = 0;
-  c->rec->nrows = 0;
+  m->broken = 0;
+  PetscCall(PDRecordClearRows(c->rec));
   PetscCall(VecZeroEntries(c->X));
   PetscCall(VecZeroEntries(c->u_prev));
   PetscCall(VecZeroEntries(c->f_ext));
@@ -436,7 +436,8 @@ PetscErrorCode PDExplicitStatus(PDExplicit *c) {
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)c->m->scene->stop_cmod));
   else if (c->interrupted) {
     rec->converged = PETSC_FALSE;
-    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "interrupted by SIGTERM after time step %" PetscInt_FMT, rec->time_steps));
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "interrupted by %s after time step %" PetscInt_FMT, PDInterruptSignal(),
+                            rec->time_steps));
   } else if (c->reason < 0) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "time integration stopped: %s", TSConvergedReasons[c->reason]));

@@ -182,17 +182,17 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
     } else
       U = rec->fail_upper = T;
   }
-  if (best) {
-    PetscCall(PetscArraycpy(rec->rows, best, nbest));
-    rec->nrows = nbest;
+  if (best) { /* the curve of the largest load carried */
+    PetscCall(PDRecordClearRows(rec));
+    for (PetscInt r = 0; r < nbest; r++) PetscCall(PDRecordAddRow(rec, &best[r]));
   }
   rec->time_steps = total_steps;
   rec->steps      = rec->ntrials;
   if (c.interrupted) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status,
-                            "interrupted by SIGTERM after %" PetscInt_FMT " trials: failure load between %.1f and %.1f N so far",
-                            rec->ntrials, (double)L, (double)U));
+                            "interrupted by %s after %" PetscInt_FMT " trials: failure load between %.1f and %.1f N so far",
+                            PDInterruptSignal(), rec->ntrials, (double)L, (double)U));
   } else if (rec->fail_lower > 0 && rec->fail_upper > 0)
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: failure load between %.1f and %.1f N (%" PetscInt_FMT " trials)",
                             (double)rec->fail_lower, (double)rec->fail_upper, rec->ntrials));

@@ -1,0 +1,9 @@
+/* The parts of reading a scene, in the order PDSceneCreateFromOptions calls them (each may depend on
+   what the earlier ones read). Used only inside PetscOptionsBegin/End. */
+#pragma once
+#include "pd_scene.h"
+
+/* Materials, notches and node regions (-pd_materialK_*, -pd_notchK_*, -pd_regionK_*). */
+PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *);
+/* Control, path following, the explicit path, the failure search, the damage limiter, checkpoints. */
+PetscErrorCode PDSceneReadSolution(PetscOptionItems *PetscOptionsObject, MPI_Comm, PDScene *);

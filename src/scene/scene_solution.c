@@ -1,0 +1,123 @@
+/* How a scene is solved: control, path following, the explicit path, the failure search, the damage
+   limiter, fields and checkpoints. Options outside the chosen path are left at their defaults (the
+   schema says where each applies) and, if given, reported as unused. */
+#include "scene_read.h"
+#include "option_values.h"
+
+static PetscErrorCode ReadPathFollowing(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
+  PetscInt at = sc->has_cmod ? PD_ARC_CMOD : PD_ARC_CYLINDRICAL, solve = 1;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_arclength_type", &at, NULL));
+  sc->arc_type = (PDArcType)at;
+  PetscCheck(sc->arc_type != PD_ARC_CMOD || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_arclength_type: cmod needs a CMOD gauge (-pd_cmod_points)");
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_arclength_solve", &solve, NULL));
+  sc->arc_augmented = solve == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_initial", &sc->arc_initial, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_growth", &sc->arc_growth, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_target_its", &sc->arc_target_its, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_halved_its", &sc->arc_halved_its, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_hold", &sc->arc_hold, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_rtol", &sc->arc_rtol, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_implex", &sc->arc_implex, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_stop_fraction", &sc->stop_fraction, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_unload_at", &sc->unload_at, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_reload_at", &sc->reload_at, NULL));
+  PetscCheck(sc->unload_at == 0 || sc->reload_at < sc->unload_at, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_reload_at: must lie in [0, -pd_unload_at), got %g", (double)sc->reload_at);
+  if (sc->arc_type != PD_ARC_DISSIPATION) PetscFunctionReturn(0);
+  PetscCheck(sc->arc_implex == 0, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_arclength_implex: a secant step dissipates nothing the dissipation constraint can measure; use cmod, "
+             "cylindrical or spherical");
+  PetscCheck(sc->unload_at == 0, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_unload_at: unloading dissipates nothing, so the dissipation constraint cannot follow it; use cmod, cylindrical "
+             "or spherical");
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
+  const PDRegion *load = &sc->region[sc->load_region];
+  PetscInt        v = load->kind == PD_REGION_FORCE ? PD_CONTROL_FORCE : PD_CONTROL_DISPLACEMENT, t = 0;
+  PetscBool       set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_control", &v, NULL));
+  sc->control = (PDControl)v;
+  PetscCheck(sc->control >= PD_CONTROL_ARCLENGTH || (sc->control == PD_CONTROL_FORCE) == (load->kind == PD_REGION_FORCE), comm,
+             PETSC_ERR_USER_INPUT, "Option -pd_control: '%s' does not match the load region %s, which is a %s region",
+             PDControlNames[sc->control], load->option, PDRegionKinds[load->kind]);
+  PetscCall(ReadPathFollowing(PetscOptionsObject, comm, sc));
+  sc->predictor = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_predictor", &sc->predictor, NULL));
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_tangent", &t, NULL));
+  sc->tangent = (PDTangent)t;
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_pc_matrix", &t, NULL));
+  sc->pc_matrix = (PDPCMatrix)t;
+  t             = 0;
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_mat_type", &t, &set));
+  if (set) PetscCall(PetscStrncpy(sc->mat_type, PDMatTypes[t], sizeof sc->mat_type));
+  sc->dlambda_max = sc->lambda_max / sc->steps;
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dlambda_max", &sc->dlambda_max, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dlambda_min", &sc->dlambda_min, NULL));
+  PetscCheck(sc->explicit_mode || sc->dlambda_min <= sc->dlambda_max, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_dlambda_min: must be at most -pd_dlambda_max (%g), got %g", (double)sc->dlambda_max, (double)sc->dlambda_min);
+  sc->limiter_max = -1; /* by bond count, PDModelLimiterCap */
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_max_bonds", &sc->limiter_max, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_stage_its", &sc->limiter_stage_its, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_sublevels", &sc->limiter_sublevels, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_fields_every", &sc->fields_every, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_checkpoint_every", &sc->checkpoint_every, NULL));
+  PetscCall(PDOptionString(PetscOptionsObject, sc, "-pd_restart", sc->restart, sizeof sc->restart, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadExplicit(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
+  PetscFunctionBeginUser;
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_ramp_time", &sc->ramp_time, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_hold_time", &sc->hold_time, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dt_safety", &sc->dt_safety, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_damping", &sc->damping, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_adr", &sc->adr, NULL));
+  PetscCheck(!(sc->adr && sc->damping > 0), comm, PETSC_ERR_USER_INPUT, "Option -pd_adr: sets its own damping; drop -pd_damping %g",
+             (double)sc->damping);
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_output_stride", &sc->out_stride, NULL));
+  PetscFunctionReturn(0);
+}
+
+/* Failure search options (Ness 2019 Sec. 3.5, 4.3). Tolerances are relative where the seed's are absolute
+   (its velocity tolerance is in m/s), so that one default serves beams of any size and load. */
+static PetscErrorCode ReadFailureSearch(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
+  const PDRegion *load = &sc->region[sc->load_region];
+  PetscInt        crit = PD_FAILURE_DAMAGE, n = 2;
+  PetscBool       set;
+
+  PetscFunctionBeginUser;
+  if (sc->failure_search) {
+    PetscCheck(load->kind == PD_REGION_FORCE, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_failure_search: needs a load-controlled scene; the load region %s is of kind %s, not force", load->option,
+               PDRegionKinds[load->kind]);
+    PetscCheck(sc->damping > 0, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_failure_search: needs -pd_damping > 0 (a trial that survives must come to rest), got %g", (double)sc->damping);
+  }
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_failure_criterion", &crit, NULL));
+  sc->failure_criterion = (PDFailureCriterion)crit;
+  PetscCall(PDOptionRealArray(PetscOptionsObject, sc, "-pd_failure_bracket", sc->failure_bracket, &n, &set));
+  PetscCheck(!set || (n == 2 && sc->failure_bracket[0] > 0 && sc->failure_bracket[1] > sc->failure_bracket[0]), comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_failure_bracket: needs two loads 0 < lower < upper, got %" PetscInt_FMT " value(s) %g,%g", n,
+             (double)sc->failure_bracket[0], (double)(n > 1 ? sc->failure_bracket[1] : 0));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_failure_tol", &sc->failure_tol, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_failure_velocity_tol", &sc->failure_vtol, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_failure_force_tol", &sc->failure_ftol, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_failure_damage_tol", &sc->failure_dtol, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_failure_window", &sc->failure_window, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDSceneReadSolution(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
+  PetscFunctionBeginUser;
+  PetscCall(ReadImplicit(PetscOptionsObject, comm, sc));
+  PetscCall(ReadExplicit(PetscOptionsObject, comm, sc));
+  PetscCall(ReadFailureSearch(PetscOptionsObject, comm, sc));
+  PetscFunctionReturn(0);
+}
