@@ -352,7 +352,8 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   sc->limiter_sublevels  = 1;
   sc->lambda_max         = 1;
   sc->dlambda_min        = 1e-6;
-  sc->dt_safety          = 0.7;
+  sc->dt_safety          = 0.9;
+  sc->dt_power_its       = 100;
 
   PetscOptionsBegin(comm, NULL, "pdimplicit scene", NULL);
   PetscCall(
@@ -604,9 +605,15 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
     PetscCheck(sc->ramp_time >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_ramp_time: must be non-negative, got %g", (double)sc->ramp_time);
     PetscCall(PDOptionReal(PetscOptionsObject, "-pd_hold_time", "Explicit: time held at the end of the ramp (s)", &sc->hold_time, NULL));
     PetscCheck(sc->hold_time >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_hold_time: must be non-negative, got %g", (double)sc->hold_time);
-    PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dt_safety", "Explicit: time step as a fraction of the stable step (THEORY.md Eq. 4.6)",
+    PetscCall(PDOptionReal(PetscOptionsObject, "-pd_dt_safety",
+                           "Explicit: time step as a fraction of the stable step 2/sqrt(lambda_max(M^-1 K)) (docs/explicit.md)",
                            &sc->dt_safety, NULL));
     PetscCheck(sc->dt_safety > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_dt_safety: must be positive, got %g", (double)sc->dt_safety);
+    PetscCall(PDOptionInt(PetscOptionsObject, "-pd_dt_power_its",
+                          "Explicit: power iterations estimating the largest eigenvalue of the mass-scaled stiffness", &sc->dt_power_its,
+                          NULL));
+    PetscCheck(sc->dt_power_its > 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_dt_power_its: must be positive, got %" PetscInt_FMT,
+               sc->dt_power_its);
     PetscCall(
         PDOptionReal(PetscOptionsObject, "-pd_damping", "Explicit: local damping C (kg/(m^3 s)), force density -C v", &sc->damping, NULL));
     PetscCheck(sc->damping >= 0, comm, PETSC_ERR_USER_INPUT, "Option -pd_damping: must be non-negative, got %g", (double)sc->damping);
