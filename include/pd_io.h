@@ -32,7 +32,9 @@ typedef struct {
   char        restart_from[PETSC_MAX_PATH_LEN]; /* checkpoint the path went on from, or empty */
   PetscInt    restart_step;                     /* its step */
   /* explicit path */
-  PetscReal dt_stable, dt; /* stable estimate and step used (s) */
+  PetscReal eig_est, eig_bound; /* largest eigenvalue of M^-1 K: power-iteration estimate, Gershgorin bound (1/s^2) */
+  PetscReal dt_stable, dt;      /* stable step 2/sqrt(eig_est) and step used (s) */
+  PetscReal dt_eq46;            /* the estimate of THEORY.md Eq. 4.6 (s) */
   PetscInt  time_steps;
   PetscReal ke_max;  /* largest kinetic energy at a recorded step (J) */
   PetscReal v_peak;  /* largest nodal velocity (m/s) */

@@ -84,5 +84,8 @@ PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscIn
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);
+PetscErrorCode PDModelElasticApply(PDModel *, Vec x, Vec y);
+PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);
+PetscReal      PDUnitFromId(PetscInt64 id);
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

@@ -152,12 +152,13 @@ typedef struct {
   char       mat_type[8]; /* stiffness storage (-pd_mat_type), or empty for the default */
   /* explicit path (-pd_mode explicit) */
   PetscBool explicit_mode;
-  PetscReal ramp_time;  /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */
-  PetscReal hold_time;  /* time after the ramp, at lambda_max (s) */
-  PetscReal dt_safety;  /* fraction of the stable time step */
-  PetscReal damping;    /* local damping C (kg/(m^3 s)) */
-  PetscBool adr;        /* adaptive dynamic relaxation: fictitious masses, unit steps, adaptive damping */
-  PetscInt  out_stride; /* time steps between curve rows; 0: about 400 rows */
+  PetscReal ramp_time;    /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */
+  PetscReal hold_time;    /* time after the ramp, at lambda_max (s) */
+  PetscReal dt_safety;    /* fraction of the stable time step */
+  PetscInt  dt_power_its; /* power iterations for the largest eigenvalue of M^-1 K */
+  PetscReal damping;      /* local damping C (kg/(m^3 s)) */
+  PetscBool adr;          /* adaptive dynamic relaxation: fictitious masses, unit steps, adaptive damping */
+  PetscInt  out_stride;   /* time steps between curve rows; 0: about 400 rows */
   /* failure search (-pd_failure_search): explicit trials held at constant loads, geometric bisection */
   PetscBool          failure_search;
   PDFailureCriterion failure_criterion;

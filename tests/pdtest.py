@@ -75,6 +75,34 @@ def translated(scene_name, offset):
     return args
 
 
+def mass_scaled_eigenvalue(scene_name, dx, *args, max_dofs=None):
+    """Largest eigenvalue of M^-1 K on the free dofs of a 3D scene at spacing dx, by numpy's dense symmetric
+    solver: the stiffness written by an elastic implicit run with PETSc's binary viewer after its solve (-ksp_view_mat) (AIJ, 32-bit indices,
+    big-endian; the bond constants do not depend on the law), free dofs the rows with a non-zero
+    off-diagonal entry (constrained rows hold bc_scale alone), M = rho dx^3 with the scene's -pd_rho.
+    Returns (eigenvalue, free dofs); the eigenvalue is None above max_dofs free dofs (the dense solver is
+    O(n^3): 13 minutes for 11,000 dofs with the reference BLAS)."""
+    import numpy as np
+    path = os.path.join(tempfile.mkdtemp(prefix="pdtest_"), "K.bin")
+    run(scene_name, "-pd_dx", dx, *args, "-pd_law", "elastic", "-pd_steps", 1, "-pd_stop_cmod", 0, "-pd_mat_type", "aij",
+        "-ksp_view_mat", "binary:" + path)
+    with open(path, "rb") as f:
+        classid, nrows, ncols, nnz = np.fromfile(f, ">i4", 4)
+        if classid != 1211216:
+            fail("%s is not a PETSc binary matrix" % path)
+        rows = np.repeat(np.arange(nrows), np.fromfile(f, ">i4", nrows))
+        cols = np.fromfile(f, ">i4", nnz)
+        vals = np.fromfile(f, ">f8", nnz)
+    free = np.zeros(nrows, bool)
+    free[rows[(rows != cols) & (vals != 0)]] = True
+    if max_dofs is not None and free.sum() > max_dofs:
+        return None, int(free.sum())
+    k = np.zeros((nrows, ncols))
+    k[rows, cols] = vals
+    rho = float([l.split()[1] for l in open(scene(scene_name)) if l.startswith("-pd_rho ")][0])
+    return float(np.linalg.eigvalsh(k[np.ix_(free, free)])[-1] / (rho * float(dx) ** 3)), int(free.sum())
+
+
 def peak(r):
     """Largest load on the run's curve (N)."""
     return max(row["load_N"] for row in r.curve)

@@ -1,9 +1,9 @@
 """Explicit path (PETSc TS, velocity Verlet) against the implicit path, and its stable time step.
-Usage: test_explicit.py elastic|crosscheck|stability"""
+Usage: test_explicit.py elastic|crosscheck|stability|eigenvalue|failure"""
 import math
 import sys
 
-from pdtest import check, rel, run
+from pdtest import check, mass_scaled_eigenvalue, rel, run
 
 HN10 = ["-pd_dx", "0.01"]
 
@@ -17,8 +17,9 @@ def interp(x, xs, ys):
 
 
 def crosscheck():
-    # Half-notched beam at dx = 10 mm, undamped, smoothstep ramp over 20,000 stable steps (28 ms; the
-    # beam's first bending period is about 0.2 ms), so inertia is small but not nil.
+    # Half-notched beam at dx = 10 mm, undamped, smoothstep ramp over 20,000 time steps (76 ms at 0.9 of
+    # the stable step; 28 ms with the former step, 0.7 of Eq. 4.6; the beam's first bending period is
+    # about 0.2 ms), so inertia is small but not nil.
     imp = run("gregoire_d50_hn", *HN10)
     exp = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit")
     s = exp.summary
@@ -62,12 +63,41 @@ def elastic():
 
 
 def stability():
+    # The step is -pd_dt_safety times 2/sqrt(lambda), lambda the power-iteration estimate of the largest
+    # eigenvalue of M^-1 K. Measured: stable at 0.99, unstable at 1.0 (the estimate is 0.27 % low;
+    # docs/benchmarks/dt_stability.md). 0.97 stable and 1.03 unstable: the stable step is known to 3 %
+    # either way (ten power iterations instead of 100 put it 3.7 % too long, and 0.97 then blows up).
     r = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", "-pd_dt_safety", "4", expect_ok=False)
     s = r.summary
     check(r.returncode != 0 and not s["converged"] and s["status"].startswith("unstable"), "4 x the stable step: detected (%s), exit %d" % (s["status"], r.returncode))
     check(all(math.isfinite(row["load_N"]) and abs(row["load_N"]) < 1e7 for row in r.curve), "no non-finite or runaway load written (%d rows)" % len(r.curve))
-    r = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", "-pd_dt_safety", "0.9")
-    check(r.summary["converged"] and r.curve[-1]["cmod_m"] >= 2e-4, "0.9 x the stable step: stable, traced to CMOD 0.2 mm (%s)" % r.summary["status"])
+    r = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", "-pd_dt_safety", "1.03", expect_ok=False)
+    check(r.returncode != 0 and r.summary["status"].startswith("unstable"), "1.03 x the stable step: unstable (%s)" % r.summary["status"])
+    for sf in (None, "0.97"):
+        r = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", *(("-pd_dt_safety", sf) if sf else ()))
+        e = r.summary["explicit"]
+        check(r.summary["converged"] and r.curve[-1]["cmod_m"] >= 2e-4, "%g x the stable step%s: stable, traced to CMOD 0.2 mm in %d steps of %.4g s (%s)" % (
+            e["dt_safety"], "" if sf else " (default)", e["time_steps"], e["dt_s"], r.summary["status"]))
+
+
+def eigenvalue():
+    # The largest eigenvalue of M^-1 K that sets the step, against numpy's on the stiffness an elastic implicit
+    # run writes: the half-notched beam at dx = 10 mm (1,325 free dofs).
+    lam, _ = mass_scaled_eigenvalue("gregoire_d50_hn", 0.01)
+    e = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", "-pd_stop_cmod", "2e-5").summary["explicit"]
+    est, bound = e["eigenvalue_estimate_per_s2"], e["eigenvalue_gershgorin_per_s2"]
+    # power iteration's Rayleigh quotient is a lower bound (measured 0.27 % low after 100 iterations)
+    check(lam * (1 - 0.01) <= est <= lam * (1 + 1e-6), "estimate %.6e 1/s^2 (%d power iterations) within 1 %% below numpy's %.6e (%.2f %%)" % (
+        est, e["power_iterations"], lam, 100 * (est / lam - 1)))
+    check(bound >= lam, "Gershgorin bound %.4e >= largest eigenvalue %.4e (%.2f times)" % (bound, lam, bound / lam))
+    check(rel(e["dt_stable_s"], 2 / math.sqrt(est)) < 1e-6 and rel(e["dt_s"], 0.9 * e["dt_stable_s"]) < 1e-6,
+          "stable step %.6e s = 2/sqrt(estimate); step %.6e s = 0.9 of it (default safety %g)" % (e["dt_stable_s"], e["dt_s"], e["dt_safety"]))
+    many = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", "-pd_stop_cmod", "2e-5", "-pd_dt_power_its", "3000").summary["explicit"]
+    est2 = many["eigenvalue_estimate_per_s2"]
+    check(rel(est2, lam) < 1e-6, "3,000 power iterations: %.6e 1/s^2, %.1e from numpy's" % (est2, rel(est2, lam)))
+    two = run("gregoire_d50_hn", *HN10, "-pd_mode", "explicit", "-pd_stop_cmod", "2e-5", ranks=2).summary["explicit"]
+    check(rel(two["eigenvalue_estimate_per_s2"], est) < 1e-9 and rel(two["dt_s"], e["dt_s"]) < 1e-9, "two ranks: estimate %.10e against %.10e on one" % (
+        two["eigenvalue_estimate_per_s2"], est))
 
 
 def failure():
@@ -90,4 +120,4 @@ def failure():
 
 
 if __name__ == "__main__":
-    {"elastic": elastic, "crosscheck": crosscheck, "stability": stability, "failure": failure}[sys.argv[1]]()
+    {"elastic": elastic, "crosscheck": crosscheck, "stability": stability, "eigenvalue": eigenvalue, "failure": failure}[sys.argv[1]]()

@@ -229,9 +229,9 @@ static PetscErrorCode SetupScale(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
-/* A number in [-1, 1] from a bond's global id (splitmix64): the same bond gets the same value on any
+/* A number in [-1, 1] from a global id (splitmix64): the same bond or dof gets the same value on any
    rank count. */
-static PetscReal Scatter(PetscInt64 id) {
+PetscReal PDUnitFromId(PetscInt64 id) {
   uint64_t z = (uint64_t)id + 0x9E3779B97F4A7C15ull;
   z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
   z          = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
@@ -286,7 +286,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
       PetscCall(PetscMalloc1(nb, &m->thr));
       for (PetscInt e = 0; e < bd->nbonds; e++) {
         PDLaw law = m->law[bd->material[e]];
-        law.ft *= 1 + sc->strength_scatter * Scatter(PDBondGlobalId(lat, bd, e));
+        law.ft *= 1 + sc->strength_scatter * PDUnitFromId(PDBondGlobalId(lat, bd, e));
         PDLawBondThresholds(&law, bd->lambda ? bd->lambda[e] : 1, &m->thr[e]);
       }
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
@@ -479,18 +479,9 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
   PetscFunctionReturn(0);
 }
 
-/* y = K(u) x on every dof, constrained ones included (no elimination): the tangent whose bond scalars
-   the last PDModelJacobian computed (at the same u), or the linearised micromodulus of a model whose
-   tangent is constant. Path following needs the coupling of free and constrained dofs, which the
-   assembled matrix drops. */
-PetscErrorCode PDModelTangentApply(PDModel *m, Vec u, Vec x, Vec y) {
-  PetscFunctionBeginUser;
-  PetscCall(PDModelTangentApplyAt(m, u, x, y, PETSC_FALSE));
-  PetscFunctionReturn(0);
-}
-
-/* The same, the bond scalars first recomputed at u when refresh is set. */
-PetscErrorCode PDModelTangentApplyAt(PDModel *m, Vec u, Vec x, Vec y, PetscBool refresh) {
+/* y = K x on every dof from the bond scalars at u (recomputed first when refresh is set), or from the
+   linearised micromodulus at rest when u is NULL. */
+static PetscErrorCode TangentApply(PDModel *m, Vec u, Vec x, Vec y, PetscBool refresh) {
   const PetscScalar *ul, *xl;
   PetscScalar       *yl, *yy;
   Vec                uloc, xloc, yloc;
@@ -500,13 +491,19 @@ PetscErrorCode PDModelTangentApplyAt(PDModel *m, Vec u, Vec x, Vec y, PetscBool 
   PetscCall(VecCopy(x, m->x_local));
   PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  if (refresh && m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, NULL));
+  if (u)
+    PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  else {
+    PetscCall(VecGhostGetLocalForm(m->u_local, &uloc));
+    PetscCall(VecZeroEntries(uloc));
+    PetscCall(VecGetArrayRead(uloc, &ul));
+  }
+  if (u && refresh && m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, NULL));
   PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &yloc));
   PetscCall(VecGetArrayRead(xloc, &xl));
   PetscCall(VecGetArray(yloc, &yl));
-  PetscCall(PDModelTangentApplyLocal(m, ul, m->ka, m->kb, xl, yl));
+  PetscCall(PDModelTangentApplyLocal(m, ul, u ? m->ka : NULL, u ? m->kb : NULL, xl, yl));
   PetscCall(VecGetArray(y, &yy));
   PetscCall(PetscArraycpy(yy, yl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
   PetscCall(VecRestoreArray(y, &yy));
@@ -515,6 +512,31 @@ PetscErrorCode PDModelTangentApplyAt(PDModel *m, Vec u, Vec x, Vec y, PetscBool 
   PetscCall(VecGhostRestoreLocalForm(m->f_local, &yloc));
   PetscCall(VecGhostRestoreLocalForm(m->x_local, &xloc));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  PetscFunctionReturn(0);
+}
+
+/* y = K(u) x on every dof, constrained ones included (no elimination): the tangent whose bond scalars
+   the last PDModelJacobian computed (at the same u), or the linearised micromodulus of a model whose
+   tangent is constant. Path following needs the coupling of free and constrained dofs, which the
+   assembled matrix drops. */
+PetscErrorCode PDModelTangentApply(PDModel *m, Vec u, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  PetscCall(TangentApply(m, u, x, y, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+/* The same, the bond scalars first recomputed at u when refresh is set. */
+PetscErrorCode PDModelTangentApplyAt(PDModel *m, Vec u, Vec x, Vec y, PetscBool refresh) {
+  PetscFunctionBeginUser;
+  PetscCall(TangentApply(m, u, x, y, refresh));
+  PetscFunctionReturn(0);
+}
+
+/* y = K_0 x on every dof: the undamaged elastic stiffness in the reference configuration (the linearised
+   micromodulus, THEORY.md Eq. 4.13), whatever the bond histories and the kinematics. */
+PetscErrorCode PDModelElasticApply(PDModel *m, Vec x, Vec y) {
+  PetscFunctionBeginUser;
+  PetscCall(TangentApply(m, NULL, x, y, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -531,6 +553,36 @@ PetscErrorCode PDModelEnergy(PDModel *m, Vec u, PetscReal *stored, PetscReal *di
   PetscCall(MPIU_Allreduce(e, g, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
   *stored     = g[0];
   *dissipated = g[1];
+  PetscFunctionReturn(0);
+}
+
+/* Gershgorin bound on the undamaged elastic stiffness K_0, per dof: row (i, a) holds per bond the block
+   (c/|xi|) e e^T on node i's diagonal and its negative in column j, whose entries sum in absolute value to
+   2 (c/|xi|) |e_a| sum_b |e_b|. No eigenvalue of M^-1 K_0 (M diagonal) exceeds the largest row sum over its
+   dof's mass, constrained dofs eliminated or not (a principal submatrix has smaller rows and eigenvalues).
+   Damage, secant and softening slopes only lower bond stiffnesses; finite kinematics raises the tangent
+   by a relative amount of the order of the bond stretch. */
+PetscErrorCode PDModelStiffnessRowBound(const PDModel *m, Vec row) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscInt   bs  = m->bs;
+  PetscScalar     *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(row, &r));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    for (PetscInt a = 0; a < bs; a++) r[bs * i + a] = 0;
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
+      const PetscInt   e  = bd->inc_bond[p];
+      const PetscReal *xa = &lat->x[3 * bd->a[e]], *xb = &lat->x[3 * bd->b[e]];
+      PetscReal        L = 0, sum = 0;
+      for (PetscInt a = 0; a < bs; a++) L += (xb[a] - xa[a]) * (xb[a] - xa[a]);
+      L = PetscSqrtReal(L);
+      for (PetscInt a = 0; a < bs; a++) sum += PetscAbsReal(xb[a] - xa[a]) / L;
+      for (PetscInt a = 0; a < bs; a++) r[bs * i + a] += 2 * bd->coef[e] / L * PetscAbsReal(xb[a] - xa[a]) / L * sum;
+    }
+  }
+  PetscCall(VecRestoreArray(row, &r));
   PetscFunctionReturn(0);
 }
 

@@ -77,6 +77,7 @@ static PetscErrorCode ReadExplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_ramp_time", &sc->ramp_time, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_hold_time", &sc->hold_time, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dt_safety", &sc->dt_safety, NULL));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_dt_power_its", &sc->dt_power_its, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_damping", &sc->damping, NULL));
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_adr", &sc->adr, NULL));
   PetscCheck(!(sc->adr && sc->damping > 0), comm, PETSC_ERR_USER_INPUT, "Option -pd_adr: sets its own damping; drop -pd_damping %g",

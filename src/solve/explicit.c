@@ -50,9 +50,11 @@ static PetscErrorCode MaxStretchPerStep(PDExplicit *c, Vec v, PetscReal *ds) {
   PetscFunctionReturn(0);
 }
 
-/* Stable time step (THEORY.md Eq. 4.6): dt_i = sqrt(2 rho V_i / sum_j coef_ij/|xi_ij|), minimum over
-   nodes; coef already holds c, beta, lambda and both volumes. */
-static PetscErrorCode StableTimeStep(PDModel *m, PetscReal *dt) {
+/* The estimate of THEORY.md Eq. 4.6, dt_i = sqrt(2 rho V_i / sum_j coef_ij/|xi_ij|), minimum over nodes; coef
+   already holds c, beta, lambda and both volumes. It is 2/sqrt of a bound on the largest eigenvalue of
+   M^-1 K (x^T K x <= 2 sum_i x_i^T D_i x_i with D_i the node's diagonal block, whose largest eigenvalue is
+   at most its trace), as loose as the Gershgorin bound; reported for comparison. */
+static PetscErrorCode Eq46TimeStep(PDModel *m, PetscReal *dt) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   PetscReal       *k, dtmin = PETSC_MAX_REAL;
@@ -74,36 +76,66 @@ static PetscErrorCode StableTimeStep(PDModel *m, PetscReal *dt) {
   PetscFunctionReturn(0);
 }
 
+/* Largest eigenvalue of M^-1 K on the free dofs (constrained ones follow the prescribed motion), K the
+   undamaged elastic stiffness at rest: velocity Verlet is stable for dt < 2/sqrt(lambda_max). The
+   Gershgorin bound (PDModelStiffnessRowBound) is guaranteed but about 3 times too large on the
+   Gregoire lattices; power iteration x <- M^-1 K x from a start fixed by the global dof ids (the same on
+   any rank count) gives the Rayleigh quotient x^T K x / x^T M x, a lower bound that rises towards
+   lambda_max (docs/explicit.md for how close it gets, and the margin the default safety leaves). */
+static PetscErrorCode LargestEigenvalue(PDExplicit *c) {
+  PDModel       *m = c->m;
+  const PetscInt n = m->bs * m->lat->nowned, its = m->scene->dt_power_its;
+  Vec            fr, x, y, w;
+  PetscScalar   *xx, xkx, xmx;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(c->mass, &fr));
+  PetscCall(VecDuplicate(c->mass, &x));
+  PetscCall(VecDuplicate(c->mass, &y));
+  PetscCall(VecDuplicate(c->mass, &w));
+  PetscCall(VecCopy(m->fixed, fr)); /* 1 on free dofs, 0 on constrained ones */
+  PetscCall(VecScale(fr, -1));
+  PetscCall(VecShift(fr, 1));
+  PetscCall(PDModelStiffnessRowBound(m, y));
+  PetscCall(VecPointwiseDivide(y, y, c->mass));
+  PetscCall(VecPointwiseMult(y, y, fr));
+  PetscCall(VecMax(y, NULL, &c->eig_bound));
+  PetscCall(VecGetArray(x, &xx));
+  for (PetscInt k = 0; k < n; k++) xx[k] = PDUnitFromId(m->bs * (PetscInt64)m->lat->gid_start + k);
+  PetscCall(VecRestoreArray(x, &xx));
+  PetscCall(VecPointwiseMult(x, x, fr));
+  c->eig_est = 0;
+  for (PetscInt it = 0; it < its; it++) {
+    PetscCall(PDModelElasticApply(m, x, y));
+    PetscCall(VecPointwiseMult(y, y, fr));
+    PetscCall(VecPointwiseMult(w, x, c->mass));
+    PetscCall(VecDot(x, y, &xkx));
+    PetscCall(VecDot(x, w, &xmx));
+    if (PetscRealPart(xmx) == 0) break; /* no free dof */
+    c->eig_est = PetscMax(c->eig_est, PetscRealPart(xkx) / PetscRealPart(xmx));
+    PetscCall(VecPointwiseDivide(x, y, c->mass));
+    PetscCall(VecNormalize(x, NULL));
+  }
+  PetscCall(VecDestroy(&fr));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&y));
+  PetscCall(VecDestroy(&w));
+  PetscCheck(c->eig_est > 0, m->lat->comm, PETSC_ERR_USER_INPUT, "Explicit path: no free degree of freedom has stiffness");
+  PetscFunctionReturn(0);
+}
+
 /* Adaptive dynamic relaxation (Kilic and Madenci 2010): fictitious masses m = (1/4) sum_j |K_ij| / sf^2 with
    a unit time step, the Gershgorin bound that keeps central differences stable (sf = -pd_dt_safety);
    K is the elastic bond stiffness, which bounds the secant and consistent tangents of every law. */
 static PetscErrorCode AdrMass(PDModel *m, Vec mass) {
-  const PDBonds   *bd  = m->bonds;
-  const PDLattice *lat = m->lat;
-  const PetscInt   bs  = m->bs;
-  const PetscReal  sf  = m->scene->dt_safety;
-  PetscScalar     *ms;
+  const PetscReal sf = m->scene->dt_safety;
+  PetscScalar    *ms;
 
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(mass));
+  PetscCall(PDModelStiffnessRowBound(m, mass));
+  PetscCall(VecScale(mass, 1 / (4 * sf * sf)));
   PetscCall(VecGetArray(mass, &ms));
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt i = bd->a[e], j = bd->b[e];
-    PetscReal      d[3] = {0, 0, 0}, L = 0, sum = 0;
-    for (PetscInt a = 0; a < bs; a++) {
-      d[a] = lat->x[3 * j + a] - lat->x[3 * i + a];
-      L += d[a] * d[a];
-    }
-    L = PetscSqrtReal(L);
-    for (PetscInt a = 0; a < bs; a++) sum += PetscAbsReal(d[a]) / L;
-    /* row a of the bond block (k e e^T) sums to k |e_a| sum_b |e_b|, on the diagonal and off it */
-    for (PetscInt a = 0; a < bs; a++) {
-      const PetscReal r = 2 * bd->coef[e] / L * PetscAbsReal(d[a]) / L * sum / (4 * sf * sf);
-      ms[bs * i + a] += r;
-      if (j < lat->nowned) ms[bs * j + a] += r;
-    }
-  }
-  for (PetscInt k = 0; k < bs * lat->nowned; k++)
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++)
     if (PetscRealPart(ms[k]) == 0) ms[k] = 1; /* a dof without bonds: any mass, it carries no force */
   PetscCall(VecRestoreArray(mass, &ms));
   PetscFunctionReturn(0);
@@ -308,7 +340,6 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   PetscInt       n    = m->bs * m->lat->nowned, rstart;
-  PetscReal      dt_stable;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(c, sizeof *c));
@@ -317,23 +348,6 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   /* dynamics has no limiter: every level is open, and histories rise with each force evaluation */
   for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
   m->commit_history = m->softening;
-  PetscCall(StableTimeStep(m, &dt_stable));
-  c->dt     = sc->adr ? 1 : sc->dt_safety * dt_stable; /* dynamic relaxation counts time in steps */
-  c->t_ramp = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c->dt;
-  /* a failure search trial holds its load, by default as long as the ramp took */
-  c->t_end       = c->t_ramp + (sc->failure_search && sc->hold_time == 0 ? c->t_ramp : sc->hold_time);
-  c->nsteps      = (PetscInt)PetscCeilReal(c->t_end / c->dt);
-  c->stride      = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, c->nsteps / 400);
-  rec->dt_stable = dt_stable;
-  rec->dt        = c->dt;
-  if (sc->adr)
-    PetscCall(PetscPrintf(
-        comm, "  explicit: adaptive dynamic relaxation, unit steps, masses at %g of the stability bound, ramp %" PetscInt_FMT " steps\n",
-        (double)sc->dt_safety, (PetscInt)c->t_ramp));
-  else
-    PetscCall(PetscPrintf(comm, "  explicit: stable step %.4g s, step %.4g s (safety %g), ramp %.4g s, %" PetscInt_FMT " steps\n",
-                          (double)dt_stable, (double)c->dt, (double)sc->dt_safety, (double)c->t_ramp, c->nsteps));
-
   PetscCall(VecDuplicate(m->f_ref, &c->mass));
   PetscCall(VecDuplicate(m->f_ref, &c->f_int));
   PetscCall(VecDuplicate(m->f_ref, &c->u_prev));
@@ -348,6 +362,31 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
     for (PetscInt k = 0; k < n; k++) ms[k] = sc->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
     PetscCall(VecRestoreArray(c->mass, &ms));
   }
+  PetscCall(LargestEigenvalue(c));
+  PetscCall(Eq46TimeStep(m, &rec->dt_eq46));
+  c->dt_stable = 2 / PetscSqrtReal(c->eig_est);
+  c->dt        = sc->adr ? 1 : sc->dt_safety * c->dt_stable; /* dynamic relaxation counts time in steps */
+  c->t_ramp    = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c->dt;
+  /* a failure search trial holds its load, by default as long as the ramp took */
+  c->t_end       = c->t_ramp + (sc->failure_search && sc->hold_time == 0 ? c->t_ramp : sc->hold_time);
+  c->nsteps      = (PetscInt)PetscCeilReal(c->t_end / c->dt);
+  c->stride      = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, c->nsteps / 400);
+  rec->eig_est   = c->eig_est;
+  rec->eig_bound = c->eig_bound;
+  rec->dt_stable = c->dt_stable;
+  rec->dt        = c->dt;
+  PetscCall(PetscPrintf(comm,
+                        "  explicit: largest eigenvalue of M^-1 K %.4g 1/s^2 (%" PetscInt_FMT
+                        " power iterations), Gershgorin bound %.4g 1/s^2; stable step %.4g %s (Gershgorin %.4g %s, Eq. 4.6 %.4g s)\n",
+                        (double)c->eig_est, sc->dt_power_its, (double)c->eig_bound, (double)c->dt_stable, sc->adr ? "steps" : "s",
+                        (double)(2 / PetscSqrtReal(c->eig_bound)), sc->adr ? "steps" : "s", (double)rec->dt_eq46));
+  if (sc->adr)
+    PetscCall(PetscPrintf(
+        comm, "  explicit: adaptive dynamic relaxation, unit steps, masses at %g of the Gershgorin bound, ramp %" PetscInt_FMT " steps\n",
+        (double)sc->dt_safety, (PetscInt)c->t_ramp));
+  else
+    PetscCall(PetscPrintf(comm, "  explicit: step %.4g s (safety %g of the stable step), ramp %.4g s, %" PetscInt_FMT " steps\n",
+                          (double)c->dt, (double)sc->dt_safety, (double)c->t_ramp, c->nsteps));
   PetscCall(VecDuplicate(m->u_local, &c->v_local));
   PetscCall(VecCreateMPI(comm, 2 * n, PETSC_DETERMINE, &c->X));
   PetscCall(VecGetOwnershipRange(c->X, &rstart, NULL));
@@ -430,7 +469,7 @@ PetscErrorCode PDExplicitStatus(PDExplicit *c) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status,
                             "unstable: a bond gained a stretch of %.3g in one step by time step %" PetscInt_FMT
-                            " (time step %.3g s, %.3g of the stable estimate)",
+                            " (time step %.3g s, %.3g of the stable step)",
                             (double)c->ds_peak, rec->time_steps, (double)c->dt, (double)c->m->scene->dt_safety));
   } else if (c->cmod_reached)
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)c->m->scene->stop_cmod));

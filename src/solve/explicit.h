@@ -23,6 +23,9 @@ struct PDExplicit {
   PetscReal         t_ramp;       /* ramp duration */
   PetscReal         t_end;        /* ramp and hold */
   PetscReal         dt;           /* time step */
+  PetscReal         eig_est;      /* largest eigenvalue of M^-1 K on free dofs, power iteration (1/s^2) */
+  PetscReal         eig_bound;    /* its Gershgorin bound (1/s^2) */
+  PetscReal         dt_stable;    /* 2/sqrt(eig_est) */
   PetscInt          nsteps;       /* time steps to t_end */
   PetscInt          stride;       /* steps between curve rows */
   PetscReal         ke_max;       /* largest kinetic energy recorded (J) */
