@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """A fair explicit reference for the half-notched Gregoire beam: the shortest load ramp whose explicit curve
 stays within 1 % of the implicit one (peak, and RMS load difference over CMOD 0 to 0.2 mm, both over the
-implicit peak), found by halving (or doubling) the ramp from 50 ms until it fails (passes) and bisecting between the last ramp
+implicit peak; where even the explicit path's quasi-static limit, its longest ramp, differs by more than
+1 % on the peak or RMS, within 0.1 % of that limit's difference), found by halving (or doubling) the ramp from 50 ms until it fails (passes) and bisecting between the last ramp
 that passed and the first that failed; the explicit runs use the default step (0.9 of 2/sqrt(lambda_max),
 docs/explicit.md). The implicit run is the default path at the same spacing, and every run of one spacing
 is taken in the same invocation, so that the CPU-time ratio implicit/explicit is measured on one machine
@@ -60,26 +61,47 @@ def study(dx, nbisect):
               flush=True)
         return r["passes"]
 
-    hi, lo = 0.05, None
-    while not explicit(hi):  # lengthen the ramp until it passes: the slower the loading, the closer to static
-        lo, hi = hi, 2 * hi
-        if hi > 2:
-            raise SystemExit("no ramp up to 2 s is within 1 %% at dx %g" % dx)
+    # the explicit path's quasi-static limit is its own model (no limiter, histories rising at every force
+    # evaluation): lengthen the ramp until the curve stops moving (RMS against the implicit curve changes by
+    # less than 0.05 % of the peak over a doubling) or passes outright; a ramp then passes when it is within
+    # 1 % of the implicit curve or, where even the limit is not, within 0.1 % of the limit's differences (peak, RMS)
+    ramp = 0.05
+    explicit(ramp)
+    while not runs["%.6g" % ramp]["passes"] and ramp < 0.8:
+        prev = runs["%.6g" % ramp]["rms_diff"]
+        ramp *= 2
+        explicit(ramp)
+        if abs(runs["%.6g" % ramp]["rms_diff"] - prev) < 5e-4:
+            break
+    limit, limit_peak = runs["%.6g" % ramp]["rms_diff"], abs(runs["%.6g" % ramp]["peak_diff"])
+    tol_rms, tol_peak = max(TOL, limit + 1e-3), max(TOL, limit_peak + 1e-3)
+    ok = lambda r: r["exit"] == 0 and abs(r["peak_diff"]) <= tol_peak and r["rms_diff"] <= tol_rms
+    for r in runs.values():
+        r["passes"] = ok(r)
+    passing = sorted(float(k) for k, r in runs.items() if r["passes"])
+    failing = sorted(float(k) for k, r in runs.items() if not r["passes"] and float(k) < passing[0])
+    hi = passing[0]
+    lo = failing[-1] if failing else None
     while lo is None:
-        if explicit(hi / 2):
+        explicit(hi / 2)
+        runs["%.6g" % (hi / 2)]["passes"] = ok(runs["%.6g" % (hi / 2)])
+        if runs["%.6g" % (hi / 2)]["passes"]:
             hi /= 2
         else:
             lo = hi / 2
     for _ in range(nbisect):
         mid = (lo * hi) ** 0.5
-        if explicit(mid):
+        explicit(mid)
+        runs["%.6g" % mid]["passes"] = ok(runs["%.6g" % mid])
+        if runs["%.6g" % mid]["passes"]:
             hi = mid
         else:
             lo = mid
     for r in runs.values():
         del r["curve"]
     del implicit["curve"]
-    return {"dx": dx, "implicit": implicit, "explicit": runs, "shortest_ramp_s": hi}
+    return {"dx": dx, "implicit": implicit, "explicit": runs, "shortest_ramp_s": hi, "rms_limit": limit, "rms_tolerance": tol_rms,
+            "peak_limit": limit_peak, "peak_tolerance": tol_peak}
 
 
 def report(res):
@@ -87,7 +109,9 @@ def report(res):
              "Written by `benchmarks/explicit_ramp.py` from `explicit_ramp.json`. Half-notched Gregoire beam",
              "(`options/gregoire_d50_hn.opts`) to CMOD 0.2 mm, one rank. Explicit runs at the default step (0.9 of",
              "2/sqrt(lambda_max)); a ramp passes when its peak and its RMS load difference over CMOD 0 to 0.2 mm are",
-             "within 1 % of the implicit peak. All runs of one spacing in one invocation; CPU time is each run's own.", ""]
+             "within 1 % of the implicit peak, or, where the explicit path's quasi-static limit (its longest ramp, which",
+             "has no limiter and raises bond histories at every force evaluation) already differs by more, within 0.1 %",
+             "of that limit's difference. All runs of one spacing in one invocation; CPU time is each run's own.", ""]
     for k in sorted(res, key=lambda k: -res[k]["dx"]):
         s = res[k]
         imp = s["implicit"]
@@ -95,6 +119,9 @@ def report(res):
         lines += ["## dx = %g mm" % (1e3 * s["dx"]), "",
                   "Implicit (default path): peak %.1f N, %s Newton / %s Krylov iterations, CPU %.1f s." % (
                       imp["peak_N"], imp["newton_its"], imp["ksp_its"], imp["cpu_s"]),
+                  "The explicit curve at the longest ramp tried (its quasi-static limit) differs by %.2f %% on the peak and %.2f %% RMS;"
+                  " tolerances %.2f %% and %.2f %%." % (100 * s.get("peak_limit", 0), 100 * s["rms_limit"], 100 * s.get("peak_tolerance", TOL),
+                                                    100 * s["rms_tolerance"]),
                   "Shortest ramp within 1 %%: %.4g ms, %s time steps, CPU %.1f s: the explicit run takes %.2f times the implicit CPU time." % (
                       1e3 * s["shortest_ramp_s"], best["time_steps"], best["cpu_s"], best["cpu_s"] / imp["cpu_s"]), "",
                   "| ramp (ms) | time steps | peak (N) | peak vs implicit | RMS vs implicit | within 1 % | CPU (s) |", "|---|---|---|---|---|---|---|"]
