@@ -61,9 +61,9 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
     PetscCall(SNESGetLineSearch(snes, &ls));
     PetscCall(SNESLineSearchSetType(ls, SNESLINESEARCHBASIC));
   }
-  /* the secant tangent converges linearly: it gets up to 200 iterations per increment */
-  /* equilibrium to 1e-6 of the increment's load residual: 1e-8 took a fifth more Newton iterations for a
-     curve equal to 1e-5 N (docs/benchmarks/solve_profile.md) */
+  /* equilibrium to 1e-6 of the increment's load residual on non-linear scenes: 1e-8 took more Newton
+     iterations for the same curve (docs/benchmarks/solve_profile.md). The secant tangent converges
+     linearly: it gets up to 200 iterations per increment */
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : 20, -1));
   PetscCall(SNESSetFromOptions(snes));
