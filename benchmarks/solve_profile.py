@@ -19,7 +19,8 @@ RESULTS = os.path.join(RESULTS_DIR, "solve_profile.json")
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 # configurations compared: label -> extra options
 CONFIGS = {"default": [], "no predictor": ["-pd_predictor", "false"],
-           "previous defaults": ["-pd_predictor", "false", "-snes_rtol", "1e-8", "-snes_ksp_ew_version", "2"]}
+           "previous defaults": ["-pd_predictor", "false", "-snes_rtol", "1e-8", "-snes_ksp_ew_version", "2"],
+           "limiter cap 40": ["-pd_limiter_max_bonds", "40"], "no limiter cap": ["-pd_limiter_max_bonds", "0"]}
 # -log_view events reported, in this order: pdimplicit's own (include/pd_log.h) and PETSc's solver events
 EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
           "PCApply", "MatMult", "MatSolve"]
