@@ -5,7 +5,7 @@
 typedef struct {
   Vec       u_n;      /* last accepted displacement */
   Vec       f_n;      /* internal force there (applied forces and reactions) */
-  Vec       du, ku;   /* work */
+  Vec       du, ku;   /* du: the last accepted increment (read by the secant predictor); ku: work */
   PetscReal lambda_n; /* last accepted load factor */
   PetscReal w_ext;    /* external work so far (J) */
   PetscInt  step;     /* accepted steps */

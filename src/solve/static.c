@@ -156,8 +156,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
-  Mat            J, P;          /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
-  Vec            u, r, du_prev; /* du_prev: the last accepted increment, for the predictor */
+  Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
+  Vec            u, r;
   PDPath         path;
   PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0;
   PetscInt       step = 0;
@@ -168,7 +168,6 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   if (m->kp) PetscCall(PDModelCreateMatrix(m, &P));
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &r));
-  PetscCall(VecDuplicate(m->f_ref, &du_prev));
   PetscCall(PDPathCreate(m, &path));
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
@@ -189,7 +188,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(VecCopy(path.u_n, u));
     PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
-    if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, du_prev, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
+    if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, path.du, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
     PetscCall(SolveIncrement(m, snes, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);
@@ -207,8 +206,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       PetscCall(PetscInfo(NULL, "increment to %g failed (%s): cut to %g\n", (double)lam, res.why, (double)dl));
       continue;
     }
-    PetscCall(VecWAXPY(du_prev, -1, path.u_n, u));
-    dl_prev = lam - lambda_n;
+    dl_prev = lam - lambda_n; /* the increment itself is path.du once accepted */
     PetscCall(PDPathAccept(m, rec, &path, u, lam, res.its, res.lits, &row));
     lambda_n                = lam;
     step                    = path.step;
@@ -252,7 +250,6 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&r));
-  PetscCall(VecDestroy(&du_prev));
   PetscCall(PDPathDestroy(&path));
   PetscFunctionReturn(0);
 }
