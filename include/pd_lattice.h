@@ -33,6 +33,8 @@ typedef struct {
   PetscInt  *gid;       /* [nlocal] global id, owned first, then ghosts */
   PetscReal *x;         /* [3*nlocal] positions */
   PetscInt  *material;  /* [nlocal] material index */
+  PetscBool *hollow;    /* [nlocal] the node lies in a void (-pd_voidK_*): no bonds, pinned, in no region */
+  PetscInt   nvoid;     /* nodes in voids (global) */
   PetscInt   reach;     /* largest offset along one axis within the horizon: ghost layers per side */
   PetscInt   nstencil;  /* neighbour offsets within the horizon, the node's own excluded */
   PetscInt  *stencil;   /* [4*nstencil] di, dj, dk and n2 = di^2 + dj^2 + dk^2, lexicographic in (di, dj, dk) */

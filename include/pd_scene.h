@@ -8,6 +8,7 @@
 #define PD_MAX_MATERIALS 8
 #define PD_MAX_NOTCHES 8
 #define PD_MAX_REGIONS 16
+#define PD_MAX_VOIDS 16
 #define PD_NAME_LEN 256
 
 typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
@@ -86,6 +87,13 @@ typedef struct {
   PetscInt  normal; /* axis of the flat direction */
 } PDNotch;
 
+/* A void: a box or cylinder of the domain without material. Its nodes keep their lattice place (global
+   ids stay lattice indices) but get no bonds; they are pinned and left out of regions and output. */
+typedef struct {
+  char       option[32];
+  PDGeometry where;
+} PDVoid;
+
 typedef struct {
   char         option[32];
   PDGeometry   where;
@@ -134,10 +142,11 @@ typedef struct {
   PetscReal  lambda_max;        /* end of the load path */
   PetscReal  dlambda_min, dlambda_max;
   PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
-  PetscInt   nmaterials, nnotches, nregions;
+  PetscInt   nmaterials, nnotches, nregions, nvoids;
   PDMaterial material[PD_MAX_MATERIALS];
   PDNotch    notch[PD_MAX_NOTCHES];
   PDRegion   region[PD_MAX_REGIONS];
+  PDVoid     voids[PD_MAX_VOIDS];
   PetscInt   load_region; /* region whose force or reaction is the curve's load */
   PetscInt   disp_region; /* region whose mean displacement is the curve's displacement */
   PetscBool  has_cmod;

@@ -119,6 +119,7 @@ static PetscErrorCode Describe(Run *r) {
   PetscCall(PetscPrintf(r->comm, "  effects:"));
   for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(r->comm, "%s %s", k ? "," : "", names[k]));
   PetscCall(PetscPrintf(r->comm, "\n"));
+  if (r->lat.nvoid) PetscCall(PetscPrintf(r->comm, "  %" PetscInt_FMT " lattice nodes in voids (no bonds, pinned)\n", r->lat.nvoid));
   if (r->model.nzero_dofs)
     PetscCall(PetscPrintf(r->comm, "  %" PetscInt_FMT " dofs without stiffness pinned (%" PetscInt_FMT " nodes without any bond)\n",
                           r->model.nzero_dofs, r->model.nisolated));

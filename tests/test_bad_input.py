@@ -25,6 +25,12 @@ CASES = [
     ("cantilever", ["-pd_steps", "0"], "-pd_steps"),
     ("cantilever", ["-pd_region1_kind", "pull"], "-pd_region1_kind"),
     ("cantilever", ["-pd_rho", "-1"], "-pd_rho"),
+    ("cantilever", ["-pd_void0_box", "0.2,0,0,0.2,0.1,0.1"], "-pd_void0_box"),  # flat: a notch's job
+    ("cantilever", ["-pd_void0_cylinder", "0.5,0.05,0,0.005", "-pd_void0_axis", "z"], "-pd_void0_cylinder"),  # between node centres
+    ("cantilever", ["-pd_void0_box", "0.3,0,0,0.4,0.1,0.1", "-pd_void0_axis", "y"], "-pd_void0_axis"),  # a box has no axis
+    ("cantilever", ["-pd_void0_box", "-1,-1,-1,2,2,2"], "-pd_void"),  # no material left
+    ("cantilever", ["-pd_void0_box", "0.9,0,0,1.1,0.1,0.1"], "-pd_region1"),  # the load region lies in the void
+    ("cantilever", ["-pd_void1_box", "0.3,0,0,0.4,0.1,0.1"], "-pd_void1_box"),  # numbering gap
     ("gregoire_d50_hn", ["-pd_cmod_points", "0.0775,0.025,0,0.3,0.025,0"], "-pd_cmod_points"),
     ("gregoire_d50_hn", ["-pd_data_file", "missing.csv"], "-pd_data_file"),
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_dt_safety", "0"], "-pd_dt_safety"),

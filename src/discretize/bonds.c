@@ -46,10 +46,10 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
   PetscFunctionReturn(0);
 }
 
-/* Neighbour search: for every owned node, every node within the horizon that no notch separates. The
-   family is the lattice stencil (design point 28) laid on the node's integer lattice indices, so the
-   set depends neither on where the domain sits nor on the slab partition. cut_volume[i] collects the
-   partial volumes of the owned node's neighbours behind a notch. */
+/* Neighbour search: for every owned node outside the voids, every node within the horizon, outside the
+   voids too, that no notch separates. The family is the lattice stencil (design point 28) laid on the
+   node's integer lattice indices, so the set depends neither on where the domain sits nor on the slab
+   partition. cut_volume[i] collects the partial volumes of the owned node's neighbours behind a notch. */
 static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local, PetscReal *cut_volume) {
   const PetscReal tol   = 1e-9 * sc->dx;
   const PetscInt  first = lat->gid_start, last = lat->gid_start + lat->nowned;
@@ -60,6 +60,7 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
     const PetscInt   gi = first + i;
     const PetscReal *xi = &lat->x[3 * i];
     PetscInt         c[3];
+    if (lat->hollow[i]) continue;
     PDLatticeNodeIndices(lat, gi, c);
     for (PetscInt s = 0; s < lat->nstencil; s++) {
       const PetscInt *st = &lat->stencil[4 * s];
@@ -71,6 +72,7 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
       /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
       if (gj < gi && gj >= first && gj < last) continue;
       j = PDLatticeLocalIndex(lat, gj);
+      if (lat->hollow[j]) continue; /* no material there: the void's faces are free surfaces */
       for (PetscInt q = 0; q < sc->nnotches && !cut; q++) cut = NotchCuts(&sc->notch[q], xi, &lat->x[3 * j], sc->dim, tol);
       if (cut) {
         const PetscReal vcut =

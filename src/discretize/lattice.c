@@ -91,7 +91,7 @@ PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt 
 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
-  PetscInt    layer, g[4];
+  PetscInt    layer, g[4], nvoid = 0;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(lat, sizeof *lat));
@@ -123,7 +123,7 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   GhostRanges(lat, g);
   lat->nghost = (g[1] - g[0]) + (g[3] - g[2]);
   lat->nlocal = lat->nowned + lat->nghost;
-  PetscCall(PetscMalloc3(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material));
+  PetscCall(PetscMalloc4(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material, lat->nlocal, &lat->hollow));
   for (PetscInt id = g[0]; id < g[3]; id++) {
     const PetscInt l = PDLatticeLocalIndex(lat, id);
     lat->gid[l]      = id;
@@ -136,13 +136,27 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
         lat->material[l] = m;
         break;
       }
+    lat->hollow[l] = PETSC_FALSE;
+    for (PetscInt v = 0; v < sc->nvoids && !lat->hollow[l]; v++)
+      lat->hollow[l] = PDGeometryContains(&sc->voids[v].where, &lat->x[3 * l], sc);
+    if (l < lat->nowned && lat->hollow[l]) nvoid++;
   }
+  PetscCall(MPIU_Allreduce(&nvoid, &lat->nvoid, 1, MPIU_INT, MPI_SUM, comm));
+  for (PetscInt v = 0; v < sc->nvoids; v++) {
+    PetscInt mine = 0, all;
+    for (PetscInt l = 0; l < lat->nowned; l++) mine += PDGeometryContains(&sc->voids[v].where, &lat->x[3 * l], sc);
+    PetscCall(MPIU_Allreduce(&mine, &all, 1, MPIU_INT, MPI_SUM, comm));
+    PetscCheck(all > 0, comm, PETSC_ERR_USER_INPUT,
+               "Option %s_%s: the void contains no node (it must hold at least one node's cell centre)", sc->voids[v].option,
+               sc->voids[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
+  }
+  PetscCheck(lat->nvoid < lat->nglobal, comm, PETSC_ERR_USER_INPUT, "Options -pd_void*: the voids leave no material in the domain");
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree3(lat->gid, lat->x, lat->material));
+  PetscCall(PetscFree4(lat->gid, lat->x, lat->material, lat->hollow));
   PetscCall(PetscFree(lat->stencil));
   PetscFunctionReturn(0);
 }

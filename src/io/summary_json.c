@@ -155,8 +155,11 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
     }
     PetscCall(PetscFPrintf(comm, fp, "]},\n"));
   }
-  PetscCall(PetscFPrintf(comm, fp, "  \"nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
-                         m->lat->nglobal, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
+  /* nodes hold material; the lattice's void nodes (pinned, no bonds) are counted apart, and in the dofs */
+  PetscCall(PetscFPrintf(comm, fp,
+                         "  \"nodes\": %" PetscInt_FMT ",\n  \"void_nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT
+                         ",\n  \"dofs\": %" PetscInt_FMT ",\n",
+                         m->lat->nglobal - m->lat->nvoid, m->lat->nvoid, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));
   PetscCall(PetscFPrintf(comm, fp, "  \"dx_m\": %.10e,\n  \"horizon_ratio\": %.10e,\n  \"influence\": \"%s\",\n  \"kinematics\": \"%s\",\n",
                          (double)sc->dx, (double)sc->horizon_ratio, PDInfluences[sc->influence], PDKinematicsNames[sc->kinematics]));

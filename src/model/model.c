@@ -31,6 +31,11 @@ static PetscErrorCode GhostedValues(Vec g, PetscReal *out) {
 }
 
 /* Diagonal of a node's 3x3 stiffness block, sum over its bonds of (c/|xi|) e e^T. */
+/* A region selects the nodes of its box or cylinder that hold material: a void's nodes carry nothing. */
+static PetscBool InRegion(const PDGeometry *where, const PDLattice *lat, PetscInt i, const PDScene *sc) {
+  return !lat->hollow[i] && PDGeometryContains(where, &lat->x[3 * i], sc) ? PETSC_TRUE : PETSC_FALSE;
+}
+
 static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3]) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
@@ -63,17 +68,17 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
   for (PetscInt r = 0; r < sc->nregions; r++) {
     const PDRegion *reg = &sc->region[r];
     for (PetscInt i = 0; i < lat->nowned; i++)
-      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc)) count[r]++;
+      if (InRegion(&reg->where, lat, i, sc)) count[r]++;
   }
   PetscCall(MPIU_Allreduce(count, gcount, PD_MAX_REGIONS, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt r = 0; r < sc->nregions; r++)
-    PetscCheck(gcount[r] > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the region contains no nodes", sc->region[r].option,
-               sc->region[r].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
+    PetscCheck(gcount[r] > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the region contains no nodes (outside voids)",
+               sc->region[r].option, sc->region[r].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
   for (PetscInt r = 0; r < sc->nregions; r++) {
     const PDRegion *reg = &sc->region[r];
     if (reg->kind == PD_REGION_MONITOR) continue;
     for (PetscInt i = 0; i < lat->nowned; i++) {
-      if (!PDGeometryContains(&reg->where, &lat->x[3 * i], sc)) continue;
+      if (!InRegion(&reg->where, lat, i, sc)) continue;
       for (PetscInt a = 0; a < bs; a++) {
         const PetscInt k = bs * i + a;
         if (reg->kind == PD_REGION_FORCE) {
@@ -99,7 +104,7 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
     const PDRegion *reg = &sc->region[r];
     if (reg->kind != PD_REGION_FORCE) continue;
     for (PetscInt i = 0; i < lat->nowned; i++)
-      if (PDGeometryContains(&reg->where, &lat->x[3 * i], sc))
+      if (InRegion(&reg->where, lat, i, sc))
         for (PetscInt a = 0; a < bs; a++) {
           const PetscInt k = bs * i + a;
           if (reg->vector[a] != 0 && owner[k] > r && owner[k] * PD_MAX_REGIONS + r < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
@@ -122,12 +127,12 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
     PetscReal diag[3] = {0, 0, 0}, trace = 0;
     NodalStiffnessDiagonal(m, i, diag);
     for (PetscInt a = 0; a < bs; a++) trace += diag[a];
-    if (trace == 0) niso++;
+    if (trace == 0 && !lat->hollow[i]) niso++;
     for (PetscInt a = 0; a < bs; a++) {
       /* a direction without stiffness (a node whose bonds were all cut, or the x-direction of nodes on a
          notch plane, which keep only in-plane bonds) is pinned: it carries no force either way */
       const PetscBool zero = diag[a] <= 1e-10 * trace;
-      if (zero && owner[bs * i + a] < 0) nzero++;
+      if (zero && owner[bs * i + a] < 0 && !lat->hollow[i]) nzero++;
       fx[bs * i + a] = (owner[bs * i + a] >= 0 || zero) ? 1.0 : 0.0;
       if (fx[bs * i + a] != 0.0) nfix++;
     }
@@ -165,13 +170,13 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   PetscCall(VecGetArray(m->load_pattern, &lp));
   PetscCall(VecGetArray(m->disp_pattern, &dp));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    if (PDGeometryContains(&load->where, &lat->x[3 * i], sc))
+    if (InRegion(&load->where, lat, i, sc))
       for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[a];
-    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc)) n++;
+    if (InRegion(&dreg->where, lat, i, sc)) n++;
   }
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt i = 0; i < lat->nowned; i++)
-    if (PDGeometryContains(&dreg->where, &lat->x[3 * i], sc))
+    if (InRegion(&dreg->where, lat, i, sc))
       for (PetscInt a = 0; a < bs; a++) dp[bs * i + a] = dir[a] / gn;
   PetscCall(VecRestoreArray(m->load_pattern, &lp));
   PetscCall(VecRestoreArray(m->disp_pattern, &dp));

@@ -111,10 +111,6 @@ PetscErrorCode PDOptionsCheckNames(void) {
   PetscFunctionReturn(0);
 }
 
-static PetscInt Members(PDOptionFamily f, const PDScene *sc) {
-  return f == PD_FAMILY_MATERIAL ? sc->nmaterials : f == PD_FAMILY_NOTCH ? sc->nnotches : sc->nregions;
-}
-
 /* Why an option the scene left unread is not used; options of a PETSc object are read by it later. */
 static void UnusedMessage(const char *given, const PDScene *sc, char *msg, size_t len) {
   const PDOptionSpec *s;
@@ -124,10 +120,10 @@ static void UnusedMessage(const char *given, const PDScene *sc, char *msg, size_
 
   if (PDSchemaMatch(given, &s, &k) != PD_MATCH_OK) return; /* PDOptionsCheckNames reports these */
   if (s->type == PD_OPTION_PREFIX && PDSchemaActive(s, k, sc)) return;
-  n = s->family == PD_FAMILY_NONE ? 0 : Members(s->family, sc);
+  n = s->family == PD_FAMILY_NONE ? 0 : PDSchemaFamilyCount(s->family, sc);
   if (s->family != PD_FAMILY_NONE && k >= n && !(s->family == PD_FAMILY_MATERIAL && k == 0)) {
     PDSchemaFamily(s->family, &prefix, &noun, &nouns, NULL, NULL);
-    if (s->family == PD_FAMILY_REGION)
+    if (s->family == PD_FAMILY_REGION || s->family == PD_FAMILY_VOID)
       snprintf(what, sizeof what, "%s%d_box or %s%d_cylinder", prefix, (int)n, prefix, (int)n);
     else
       snprintf(what, sizeof what, "%s%d_box", prefix, (int)n);

@@ -49,11 +49,11 @@ static PetscErrorCode FamiliesLine(MPI_Comm comm, PetscBool markdown) {
   const char *q = markdown ? "`" : "";
 
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(
-      comm,
-      "K is %s1%s to %s%d%s in %s-pd_materialK_*%s (further materials), %s0%s to %s%d%s in %s-pd_notchK_*%s, %s0%s to %s%d%s in "
-      "%s-pd_regionK_*%s; members are numbered without gaps.\n",
-      q, q, q, PD_MAX_MATERIALS - 1, q, q, q, q, q, q, PD_MAX_NOTCHES - 1, q, q, q, q, q, q, PD_MAX_REGIONS - 1, q, q, q));
+  PetscCall(PetscPrintf(comm, "K is %s1%s to %s%d%s in %s-pd_materialK_*%s (further materials), ", q, q, q, PD_MAX_MATERIALS - 1, q, q, q));
+  PetscCall(PetscPrintf(comm, "%s0%s to %s%d%s in %s-pd_notchK_*%s, ", q, q, q, PD_MAX_NOTCHES - 1, q, q, q));
+  PetscCall(PetscPrintf(comm, "%s0%s to %s%d%s in %s-pd_regionK_*%s, ", q, q, q, PD_MAX_REGIONS - 1, q, q, q));
+  PetscCall(
+      PetscPrintf(comm, "%s0%s to %s%d%s in %s-pd_voidK_*%s; members are numbered without gaps.\n", q, q, q, PD_MAX_VOIDS - 1, q, q, q));
   PetscFunctionReturn(0);
 }
 

@@ -1,5 +1,5 @@
-/* Materials, notches and node regions of a scene. Members of each family are numbered without gaps;
-   a member exists once its box (a region: its box or cylinder) is given. */
+/* Materials, notches, node regions and voids of a scene. Members of each family are numbered without
+   gaps; a member exists once its box (a region or void: its box or cylinder) is given. */
 #include "scene_read.h"
 #include "option_values.h"
 
@@ -158,37 +158,60 @@ static PetscErrorCode ReadNotch(PetscOptionItems *PetscOptionsObject, PDScene *s
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadShape(PetscOptionItems *PetscOptionsObject, PDScene *sc, PDRegion *r) {
+/* The box or cylinder of a region or void whose options start with prefix. */
+static PetscErrorCode ReadShape(PetscOptionItems *PetscOptionsObject, PDScene *sc, const char *prefix, PDGeometry *g) {
   char      opt[64], opt2[64];
   PetscBool set_box, set_cyl;
   PetscInt  axis = 2, n = 4;
   PetscReal cyl[4] = {0, 0, 0, 0};
 
   PetscFunctionBeginUser;
-  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", r->option));
-  PetscCall(ReadBox(PetscOptionsObject, sc, opt, r->where.box, &set_box));
-  PetscCall(PetscSNPrintf(opt2, sizeof opt2, "%s_cylinder", r->option));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", prefix));
+  PetscCall(ReadBox(PetscOptionsObject, sc, opt, g->box, &set_box));
+  PetscCall(PetscSNPrintf(opt2, sizeof opt2, "%s_cylinder", prefix));
   PetscCall(PDOptionRealArray(PetscOptionsObject, sc, opt2, cyl, &n, &set_cyl));
   PetscCheck(set_box != set_cyl, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Options %s and %s: give exactly one of them", opt, opt2);
   if (set_box) {
-    r->where.shape = PD_SHAPE_BOX;
-    PetscCheck(BoxesOverlap(r->where.box, sc->domain, sc->dim, 0.5 * sc->dx), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-               "Option %s: region lies outside the domain -pd_domain", opt);
+    g->shape = PD_SHAPE_BOX;
+    PetscCheck(BoxesOverlap(g->box, sc->domain, sc->dim, 0.5 * sc->dx), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: the box lies outside the domain -pd_domain", opt);
     PetscFunctionReturn(0);
   }
   PetscCheck(n == 4, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected 4 numbers (x,y,z,radius), got %" PetscInt_FMT, opt2, n);
   PetscCheck(cyl[3] > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: radius must be positive, got %g", opt2, (double)cyl[3]);
-  r->where.shape = PD_SHAPE_CYLINDER;
-  PetscCall(PetscArraycpy(r->where.center, cyl, 3));
-  r->where.radius = cyl[3];
-  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_axis", r->option));
+  g->shape = PD_SHAPE_CYLINDER;
+  PetscCall(PetscArraycpy(g->center, cyl, 3));
+  g->radius = cyl[3];
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_axis", prefix));
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &axis, NULL));
   PetscCheck(sc->dim == 3 || axis == 2, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: a 2D scene's cylinder (a disc) has axis z", opt);
-  r->where.axis = axis;
+  g->axis = axis;
   for (PetscInt a = 0; a < sc->dim; a++)
     if (a != axis)
       PetscCheck(cyl[a] + cyl[3] >= sc->domain[a] && cyl[a] - cyl[3] <= sc->domain[3 + a], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-                 "Option %s: region lies outside the domain -pd_domain", opt2);
+                 "Option %s: the cylinder lies outside the domain -pd_domain", opt2);
+  PetscFunctionReturn(0);
+}
+
+/* A void removes material, so it has volume: a flat box would select a layer of nodes and cut the body
+   along it, which is what a notch is for. */
+static PetscErrorCode ReadVoid(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
+  PDVoid *v = &sc->voids[k];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(v->option, sizeof v->option, "-pd_void%" PetscInt_FMT, k));
+  PetscCall(ReadShape(PetscOptionsObject, sc, v->option, &v->where));
+  if (v->where.shape == PD_SHAPE_BOX)
+    for (PetscInt a = 0; a < sc->dim; a++)
+      PetscCheck(
+          v->where.box[3 + a] - v->where.box[a] >= sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+          "Option %s_box: a void is at least one grid spacing (%g m) wide along every axis, it is %g m along %c (a crack is a notch, "
+          "-pd_notch%" PetscInt_FMT "_box)",
+          v->option, (double)sc->dx, (double)(v->where.box[3 + a] - v->where.box[a]), (char)('x' + a), sc->nnotches);
+  else
+    PetscCheck(v->where.radius >= 0.5 * sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s_cylinder: a void's radius is at least half a grid spacing (%g m), got %g m", v->option, (double)(0.5 * sc->dx),
+               (double)v->where.radius);
   PetscFunctionReturn(0);
 }
 
@@ -200,7 +223,7 @@ static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(r->option, sizeof r->option, "-pd_region%" PetscInt_FMT, k));
-  PetscCall(ReadShape(PetscOptionsObject, sc, r));
+  PetscCall(ReadShape(PetscOptionsObject, sc, r->option, &r->where));
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_kind", r->option));
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &kind, &set));
   PetscCheck(set, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required (support, displacement, force or monitor)", opt);
@@ -259,6 +282,13 @@ PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *s
     if (!has && !hc) break;
     sc->nregions = k + 1;
     PetscCall(ReadRegion(PetscOptionsObject, sc, k));
+  }
+  for (PetscInt k = 0; k < PD_MAX_VOIDS; k++) {
+    PetscCall(HasOption("-pd_void%" PetscInt_FMT "_box", k, &has));
+    PetscCall(HasOption("-pd_void%" PetscInt_FMT "_cylinder", k, &hc));
+    if (!has && !hc) break;
+    sc->nvoids = k + 1;
+    PetscCall(ReadVoid(PetscOptionsObject, sc, k));
   }
   PetscCheck(sc->nregions > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option -pd_region0_box: the scene defines no node regions (supports and loads)");

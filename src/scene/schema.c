@@ -13,6 +13,7 @@ static const struct {
     [PD_FAMILY_MATERIAL] = {"-pd_material", "material", "materials", 1, PD_MAX_MATERIALS - 1},
     [PD_FAMILY_NOTCH]    = {"-pd_notch", "notch", "notches", 0, PD_MAX_NOTCHES - 1},
     [PD_FAMILY_REGION]   = {"-pd_region", "region", "regions", 0, PD_MAX_REGIONS - 1},
+    [PD_FAMILY_VOID]     = {"-pd_void", "void", "voids", 0, PD_MAX_VOIDS - 1},
 };
 
 void PDSchemaFamily(PDOptionFamily f, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last) {
@@ -103,7 +104,7 @@ const char *PDSchemaWhenText(PDOptionWhen w) {
   case PD_WHEN_NONLINEAR:
     return "the non-linear law (-pd_law or -pd_materialK_law nonlinear)";
   case PD_WHEN_CYLINDER:
-    return "cylinder regions (-pd_regionK_cylinder)";
+    return "cylinders (-pd_regionK_cylinder, -pd_voidK_cylinder)";
   case PD_WHEN_DISPLACEMENT:
     return "displacement regions (-pd_regionK_kind displacement)";
   case PD_WHEN_FORCE:
@@ -128,8 +129,19 @@ const char *PDSchemaWhenText(PDOptionWhen w) {
   return "";
 }
 
-static PetscInt FamilyCount(PDOptionFamily f, const PDScene *sc) {
-  return f == PD_FAMILY_MATERIAL ? sc->nmaterials : f == PD_FAMILY_NOTCH ? sc->nnotches : f == PD_FAMILY_REGION ? sc->nregions : 1;
+PetscInt PDSchemaFamilyCount(PDOptionFamily f, const PDScene *sc) {
+  switch (f) {
+  case PD_FAMILY_MATERIAL:
+    return sc->nmaterials;
+  case PD_FAMILY_NOTCH:
+    return sc->nnotches;
+  case PD_FAMILY_REGION:
+    return sc->nregions;
+  case PD_FAMILY_VOID:
+    return sc->nvoids;
+  default:
+    return 1;
+  }
 }
 
 PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
@@ -138,8 +150,9 @@ PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
   const PetscBool   linear   = path && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
   const PDMaterial *mat      = &sc->material[s->family == PD_FAMILY_MATERIAL ? k : 0];
   const PDRegion   *reg      = &sc->region[s->family == PD_FAMILY_REGION ? k : 0];
+  const PDGeometry *shape    = s->family == PD_FAMILY_VOID && k >= 0 && k < PD_MAX_VOIDS ? &sc->voids[k].where : &reg->where;
 
-  if (s->family != PD_FAMILY_NONE && (k < 0 || k >= FamilyCount(s->family, sc))) return PETSC_FALSE;
+  if (s->family != PD_FAMILY_NONE && (k < 0 || k >= PDSchemaFamilyCount(s->family, sc))) return PETSC_FALSE;
   switch (s->when) {
   case PD_WHEN_ALWAYS:
     return PETSC_TRUE;
@@ -156,7 +169,7 @@ PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
   case PD_WHEN_NONLINEAR:
     return mat->law == PD_LAW_NONLINEAR ? PETSC_TRUE : PETSC_FALSE;
   case PD_WHEN_CYLINDER:
-    return reg->where.shape == PD_SHAPE_CYLINDER ? PETSC_TRUE : PETSC_FALSE;
+    return shape->shape == PD_SHAPE_CYLINDER ? PETSC_TRUE : PETSC_FALSE;
   case PD_WHEN_DISPLACEMENT:
     return reg->kind == PD_REGION_DISPLACEMENT ? PETSC_TRUE : PETSC_FALSE;
   case PD_WHEN_FORCE:

@@ -5,7 +5,7 @@
 #include "pd_scene.h"
 
 /* Indexed options: -pd_materialK_*, -pd_notchK_*, -pd_regionK_*. */
-typedef enum { PD_FAMILY_NONE, PD_FAMILY_MATERIAL, PD_FAMILY_NOTCH, PD_FAMILY_REGION } PDOptionFamily;
+typedef enum { PD_FAMILY_NONE, PD_FAMILY_MATERIAL, PD_FAMILY_NOTCH, PD_FAMILY_REGION, PD_FAMILY_VOID } PDOptionFamily;
 
 /* When an option applies; an option given where it does not is an input error. */
 typedef enum {
@@ -54,7 +54,9 @@ typedef enum { PD_MATCH_NONE, PD_MATCH_OK, PD_MATCH_INDEX } PDOptionMatch;
    name fits a family entry but the index lies outside the family's range. */
 PDOptionMatch PDSchemaMatch(const char *name, const PDOptionSpec **spec, PetscInt *index);
 /* Whether the scene read so far uses the option; a family member is used only once it exists. */
-PetscBool   PDSchemaActive(const PDOptionSpec *, PetscInt index, const PDScene *);
+PetscBool PDSchemaActive(const PDOptionSpec *, PetscInt index, const PDScene *);
+/* Members of a family the scene defines (1 for options outside families). */
+PetscInt    PDSchemaFamilyCount(PDOptionFamily, const PDScene *);
 const char *PDSchemaWhenText(PDOptionWhen);
 /* The family's prefix ("-pd_region"), the words for one member and several, and the indices allowed. */
 void PDSchemaFamily(PDOptionFamily, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last);

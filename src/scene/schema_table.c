@@ -9,6 +9,7 @@ static const char *const Axes[]   = {"x", "y", "z", NULL};
 #define MAT PD_FAMILY_MATERIAL
 #define NOTCH PD_FAMILY_NOTCH
 #define REGION PD_FAMILY_REGION
+#define HOLE PD_FAMILY_VOID
 
 const PDOptionSpec PDOptionSchema[] = {
     /* scene and body */
@@ -240,6 +241,28 @@ const PDOptionSpec PDOptionSchema[] = {
      .def_note = "required",
      .when     = PD_WHEN_FORCE,
      .help     = "Total force at load factor 1, spread evenly over the region's nodes"},
+    /* voids */
+    {.name     = "_box",
+     .family   = HOLE,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "this or _cylinder",
+     .help     = "Void: a box without material, lower then upper corner, at least dx wide along every axis; nodes inside it get no bonds "
+                 "(its faces are free surfaces)"},
+    {.name     = "_cylinder",
+     .family   = HOLE,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "this or _box",
+     .help     = "Void: a cylinder without material, as a point on its axis x,y,z and radius (the axis from _axis; a hole through a 2D "
+                 "model)"},
+    {.name   = "_axis",
+     .family = HOLE,
+     .type   = PD_OPTION_ENUM,
+     .values = Axes,
+     .def    = "z",
+     .when   = PD_WHEN_CYLINDER,
+     .help   = "Axis of a cylinder void (z in 2D)"},
     /* load path and curve */
     {.name     = "-pd_load_region",
      .type     = PD_OPTION_INT,

@@ -229,7 +229,7 @@ PetscErrorCode PDModelNodalDamage(PDModel *m, Vec damage) {
     const PetscInt n   = bd->inc_start[i + 1] - bd->inc_start[i];
     PetscReal      sum = 0;
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) sum += PDModelBondDamage(m, bd->inc_bond[p]);
-    d[i] = n ? sum / n : 1;
+    d[i] = m->lat->hollow[i] ? PD_NAN : (n ? sum / n : 1); /* a void's nodes are no material: NaN, which viewers blank */
   }
   PetscCall(VecRestoreArray(damage, &d));
   PetscFunctionReturn(0);
