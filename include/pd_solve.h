@@ -14,3 +14,10 @@ PetscErrorCode PDInterrupted(MPI_Comm, PetscBool *);
 PetscErrorCode PDStopOnSignal(MPI_Comm, PDRecord *, PetscBool *);
 /* The name of the signal PDInterrupted saw, for statuses. */
 const char *PDInterruptSignal(void);
+/* Whether PDInterrupted has seen a signal (the same on every rank: only that collective sets it). */
+PetscBool PDInterruptSeen(void);
+/* Newton and Krylov iterations that look for a signal and stop the solve under way. */
+PetscErrorCode PDInterruptWatchKSP(KSP);
+PetscErrorCode PDInterruptWatchSNES(SNES);
+/* After a step that did not finish: stop, with the status, if a signal ended it. */
+PetscErrorCode PDStopInsideStep(PDRecord *, PetscBool *);

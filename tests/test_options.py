@@ -4,6 +4,7 @@ stopped by a signal, killed, or failed. Run one case: test_options.py
 misspelt|numbering|help|names|output_dir|interrupt|killed"""
 import csv
 import json
+import re
 import os
 import shutil
 import signal
@@ -185,7 +186,9 @@ def interrupt():
         check(p.returncode == 1, "%s: exit status %d (1: stopped early)" % (sig.name, p.returncode))
         with open(os.path.join(outdir, "summary.json")) as f:
             s = json.load(f)
-        check(s["status"].startswith("interrupted by %s after step" % sig.name) and not s["converged"], "status: %s" % s["status"])
+        # between steps, or inside the next one (Newton and Krylov iterations look for the signal too)
+        check(re.match(r"interrupted by %s (after step %d|during step %d \(the curve ends at step %d\))$" % (
+            sig.name, s["steps"], s["steps"] + 1, s["steps"]), s["status"]) and not s["converged"], "status: %s" % s["status"])
         header, rows, whole = read_curve(curve)
         steps = [int(r[0]) for r in rows]
         check(len(header) == COLUMNS and whole and all(len(r) == COLUMNS for r in rows) and steps == list(range(1, s["steps"] + 1))
@@ -194,6 +197,27 @@ def interrupt():
         check(not tmp and os.path.exists(os.path.join(outdir, "fields.h5")), "fields written, no temporary file left (%s)" % tmp)
         check("interrupted" in err, "stderr says so: %s" % err.strip().splitlines()[-1])
         shutil.rmtree(outdir)
+
+
+def interrupt_step():
+    # SIGTERM inside a long step (the half-notched beam loaded in one increment: about 300 Newton iterations)
+    # ends the run within seconds, not at the step's end; the curve holds no row, the summary says where
+    outdir = tempfile.mkdtemp(prefix="pdtest_")
+    p = subprocess.Popen([EXE, "-options_file", scene("gregoire_d50_hn"), "-pd_steps", "1", "-pd_dlambda_max", "1", "-pd_output_dir", outdir],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=ENV)
+    time.sleep(3)
+    check(p.poll() is None, "the step is under way after 3 s")
+    t0 = time.time()
+    p.send_signal(signal.SIGTERM)
+    p.communicate(timeout=300)
+    waited = time.time() - t0
+    s = json.load(open(os.path.join(outdir, "summary.json")))
+    check(p.returncode == 1 and s["status"] == "interrupted by SIGTERM during step 1 (the curve ends at step 0)" and s["steps"] == 0,
+          "exit %d, status %r" % (p.returncode, s["status"]))
+    header, rows, whole = read_curve(os.path.join(outdir, "curve.csv"))
+    check(len(header) == COLUMNS and not rows and whole, "curve.csv: the header, no row")
+    check(waited < 5, "stopped %.2f s after the signal (within 5 s; the step alone takes over 20 s)" % waited)
+    shutil.rmtree(outdir)
 
 
 def killed():
@@ -213,7 +237,7 @@ def killed():
 
 
 CASES = {"misspelt": misspelt, "numbering": numbering, "help": help_, "names": names, "output_dir": output_dir, "interrupt": interrupt,
-         "killed": killed}
+         "interrupt_step": interrupt_step, "killed": killed}
 
 if __name__ == "__main__":
     for case in sys.argv[1:] or list(CASES):

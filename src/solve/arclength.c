@@ -579,6 +579,8 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
                           path.step + 1, a.type == ARC_LOAD ? "increment" : "arc length", (double)len, a.its, a.why));
       PetscCall(PDModelRestoreLevels(m));
       if (a.kx_n) PetscCall(PetscArraycpy(m->kappa, a.kx_n, m->bonds->nbonds));
+      PetscCall(PDStopInsideStep(rec, &stop));
+      if (stop) break;
       if (a.type == ARC_LOAD ? a.dlam * 0.5 < sc->dlambda_min : a.dl * 0.5 < 1e-6 * a.dl0) {
         rec->converged = PETSC_FALSE;
         PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g: %s %g at its floor (%s)",

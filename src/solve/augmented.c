@@ -22,6 +22,7 @@
    tangent and dense border blocks; the preconditioner is a PCSHELL because it must apply the Newton
    PC object as is (PCFIELDSPLIT would set up its own preconditioner for the K block). */
 #include "augmented.h"
+#include "pd_solve.h"
 
 static PetscErrorCode ApplyLowerTriangular(PC pc, Vec x, Vec y) {
   PDAugmented *aug;
@@ -97,6 +98,7 @@ PetscErrorCode PDAugmentedCreate(Mat K, KSP knewton, PDAugmented *aug) {
   PetscCall(KSPCreate(comm, &aug->ksp));
   PetscCall(KSPSetOptionsPrefix(aug->ksp, "pd_augmented_"));
   PetscCall(KSPSetType(aug->ksp, KSPGMRES));
+  PetscCall(PDInterruptWatchKSP(aug->ksp));
   PetscCall(KSPGMRESSetRestart(aug->ksp, 60));
   PetscCall(KSPGetTolerances(knewton, &rtol, NULL, NULL, &maxit));
   PetscCall(KSPSetTolerances(aug->ksp, rtol, PETSC_DEFAULT, PETSC_DEFAULT, maxit));

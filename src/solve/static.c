@@ -26,6 +26,7 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
      138 s with ICC, 20,942 and 30 s with GAMG; PDModelDefaultsToGAMG) */
   PetscCall(PCSetType(pc, PDModelDefaultsToGAMG(m) ? PCGAMG : PCBJACOBI));
   PetscCall(KSPSetTolerances(ksp, m->linear ? 1e-9 : 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
+  PetscCall(PDInterruptWatchKSP(ksp));
   PetscFunctionReturn(0);
 }
 
@@ -36,6 +37,7 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
   PetscCall(SNESSetType(snes, m->linear ? SNESKSPONLY : SNESNEWTONLS));
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(PDSolverConfigureKSP(m, ksp));
+  PetscCall(PDInterruptWatchSNES(snes));
   /* inexact Newton (Eisenstat-Walker) on non-linear scenes: early iterations need little accuracy; a
      failing increment gives up after 20 iterations and is cut */
   if (!m->linear) {
@@ -123,6 +125,10 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *r
     PetscCall(SNESGetLinearSolveIterations(snes, &lits));
     res->its += its;
     res->lits += lits;
+    if (PDInterruptSeen()) {
+      PetscCall(PetscSNPrintf(res->why, sizeof res->why, "interrupted"));
+      break;
+    }
     if (reason == SNES_DIVERGED_FNORM_NAN || reason == SNES_DIVERGED_LINEAR_SOLVE) {
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
       break;
@@ -195,7 +201,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     rec->newton_its += res.its;
     rec->ksp_its += res.lits;
     if (!res.ok) {
+      PetscBool stop;
       PetscCall(PDModelRestoreLevels(m));
+      PetscCall(PDStopInsideStep(rec, &stop));
+      if (stop) break;
       if (m->linear || dl * 0.5 < sc->dlambda_min) {
         rec->converged = PETSC_FALSE;
         PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g (%s); increment %g at its floor", (double)lam,
