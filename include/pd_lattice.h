@@ -72,3 +72,6 @@ PetscInt64 PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);
 /* True on exactly one rank for every bond: the rank that owns its lower-id end. */
 PetscBool      PDBondCountedHere(const PDLattice *, const PDBonds *, PetscInt e);
 PetscErrorCode PDBondsDestroy(PDBonds *);
+/* Parts of the body the bonds hold together (nodes without bonds not counted), and the global ids of the
+   lowest nodes of the first two parts (PETSC_MAX_INT where there is none). */
+PetscErrorCode PDBondsCountParts(const PDLattice *, const PDBonds *, PetscInt *nparts, PetscInt first[2]);

@@ -16,7 +16,11 @@ CASES = [
     ("cantilever", ["-pd_region1_box", "2,0,0,2.1,0.1,0.1"], "-pd_region1_box"),
     ("cantilever", ["-pd_region0_box", "0.001,0.001,0.001,0.002,0.002,0.002"], "-pd_region0_box"),  # between nodes: empty
     ("cantilever", ["-pd_influence", "gaussian"], "-pd_influence"),
-    ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.1"], "-pd_notch0_box"),  # cuts the whole section
+    # notches and voids that cut the body apart, found from the bond graph's connectivity
+    ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.1"], "-pd_notch0_box"),  # the whole section
+    ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.0999999"], "-pd_notch0_box"),  # a hair short of the top face
+    ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.06", "-pd_notch1_box", "0.5,0,0.05,0.5,0.1,0.1"], "-pd_notch1_box"),  # two that meet
+    ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.05", "-pd_void0_box", "0.49,0,0.04,0.6,0.1,0.1"], "-pd_void0_box"),  # notch + void
     ("cantilever", ["-pd_dx", "abc"], "-pd_dx"),
     ("cantilever", ["-pd_region1_force", "0,zero,-1e4"], "-pd_region1_force"),
     ("cantilever", ["-pd_region2_box", "-0.08,0,0,0,0.1,0.1", "-pd_region2_kind", "displacement", "-pd_region2_dofs", "z",

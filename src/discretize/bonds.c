@@ -162,6 +162,35 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   PetscFunctionReturn(0);
 }
 
+/* Notches and voids must not cut the body apart (connectivity.c): the error names them and a node on
+   either side of the cut. */
+static PetscErrorCode CheckOnePiece(const PDScene *sc, const PDLattice *lat, const PDBonds *bd) {
+  PetscInt nparts, first[2];
+  char     cuts[256] = "", *p = cuts;
+
+  PetscFunctionBeginUser;
+  if (!sc->nnotches && !sc->nvoids) PetscFunctionReturn(0); /* a whole box with m >= 1 is one piece */
+  PetscCall(PDBondsCountParts(lat, bd, &nparts, first));
+  if (nparts <= 1) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < sc->nnotches && p < cuts + sizeof cuts - 40; k++)
+    p += snprintf(p, 40, "%s%s_box", p > cuts ? ", " : "", sc->notch[k].option);
+  for (PetscInt k = 0; k < sc->nvoids && p < cuts + sizeof cuts - 40; k++)
+    p += snprintf(p, 40, "%s%s_%s", p > cuts ? ", " : "", sc->voids[k].option,
+                  sc->voids[k].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
+  {
+    PetscInt  ijk[2][3];
+    PetscReal x[2][3];
+    for (PetscInt s = 0; s < 2; s++) {
+      PDLatticeNodeIndices(lat, first[s], ijk[s]);
+      for (PetscInt a = 0; a < 3; a++) x[s][a] = a < lat->dim ? lat->origin[a] + ijk[s][a] * lat->dx : 0;
+    }
+    SETERRQ(lat->comm, PETSC_ERR_USER_INPUT,
+            "Options %s: the notches and voids cut the body into %" PetscInt_FMT
+            " pieces that share no bond (the node at %g,%g,%g m and the one at %g,%g,%g m are apart); a loose piece is a mechanism",
+            cuts, nparts, (double)x[0][0], (double)x[0][1], (double)x[0][2], (double)x[1][0], (double)x[1][1], (double)x[1][2]);
+  }
+}
+
 PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd) {
   PairList   pl = {NULL, NULL, 0, 0};
   PetscInt   ncut_local, nonce = 0;
@@ -200,6 +229,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscCall(PetscFree(cut_volume));
   PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscCall(CheckOnePiece(sc, lat, bd));
   PetscFunctionReturn(0);
 }
 

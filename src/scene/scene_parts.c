@@ -148,13 +148,6 @@ static PetscErrorCode ReadNotch(PetscOptionItems *PetscOptionsObject, PDScene *s
              "Option %s: a notch box must be flat (zero width) along exactly one axis, %" PetscInt_FMT " are flat", opt, nflat);
   PetscCheck(BoxesOverlap(n->box, sc->domain, sc->dim, tol), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option %s: notch lies outside the domain -pd_domain", opt);
-  {
-    PetscBool covers = PETSC_TRUE;
-    for (PetscInt a = 0; a < sc->dim; a++)
-      if (a != n->normal && (n->box[a] > sc->domain[a] + tol || n->box[3 + a] < sc->domain[3 + a] - tol)) covers = PETSC_FALSE;
-    PetscCheck(!covers, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-               "Option %s: the notch spans the whole cross-section and would split the body in two", opt);
-  }
   PetscFunctionReturn(0);
 }
 
