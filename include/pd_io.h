@@ -76,7 +76,8 @@ PetscErrorCode PDEscapeJSON(const char *, char **);
 PetscErrorCode PDEscapeXML(const char *, char **);
 /* checkpoint.h5: a path's state at an accepted step (-pd_checkpoint_every, -pd_restart); kappa_prev: the
    bond history a step earlier, kept where the driver extrapolates histories (NULL: none) */
-PetscErrorCode PDCheckpointValidate(const PDModel *, const char *path);
+PetscErrorCode PDCheckpointValidate(const PDModel *, const char *path, PetscInt nvec, const char *const vec_name[], PetscInt nreal,
+                                    const char *const real_name[]);
 PetscErrorCode PDCheckpointWrite(PDModel *, PDRecord *, PetscInt nvec, const Vec vec[], const char *const vec_name[], PetscInt nreal,
                                  const char *const real_name[], const PetscReal real[], const PetscReal *kappa_prev);
 PetscErrorCode PDCheckpointRead(PDModel *, PDRecord *, const char *path, PetscInt nvec, Vec vec[], const char *const vec_name[],

@@ -5,6 +5,8 @@
 
 PetscErrorCode PDStaticRun(PDModel *, PDRecord *);
 PetscErrorCode PDArcLengthRun(PDModel *, PDRecord *);
+/* A checkpoint named by -pd_restart, checked before anything is written (PDCheckpointValidate). */
+PetscErrorCode PDArcLengthValidateRestart(const PDModel *, const char *path);
 PetscErrorCode PDSolverConfigureKSP(PDModel *, KSP);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
 PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);

@@ -43,7 +43,7 @@ static PetscErrorCode BuildProblem(Run *r) {
     if (r->sc.material[k].law != PD_LAW_ELASTIC && r->sc.sc_correction) keep = PETSC_TRUE;
   PetscCall(PDBondsCreate(&r->sc, &r->lat, keep, &r->bonds));
   PetscCall(PDModelCreate(&r->sc, &r->lat, &r->bonds, &r->model));
-  if (r->sc.restart[0]) PetscCall(PDCheckpointValidate(&r->model, r->sc.restart));
+  if (r->sc.restart[0]) PetscCall(PDArcLengthValidateRestart(&r->model, r->sc.restart));
   PetscCall(PetscTime(&t1));
   r->rec.t_setup = t1 - t0;
   PetscFunctionReturn(0);

@@ -62,7 +62,22 @@ def checkpoint_cases():
     ck = os.path.join(good.dir, "checkpoint.h5")
     check(os.path.exists(ck), "a checkpoint to restart from: %s" % ck)
     arc = ["-pd_control", "arclength"]
-    return [("gregoire_d200_hn_2d", arc + ["-pd_restart", ck + ".missing"], "-pd_restart"),
+    # hostile copies of the good checkpoint: its values are input like any other
+    import h5py
+    import numpy as np
+    hostile = []
+    for what, edit in (("arc_length", lambda f: f.attrs.modify("arc_length", np.nan)),
+                       ("kappa", lambda f: f["kappa"].__setitem__(Ellipsis, 1e300)),
+                       ("level", lambda f: f["level"].__setitem__(Ellipsis, 0.5)),
+                       ("displacement", lambda f: f["displacement"].__setitem__(0, np.inf)),
+                       ("steps", lambda f: f.attrs.modify("steps", np.int32(-3))),
+                       ("curve", lambda f: f["curve"].__setitem__(5, np.nan))):
+        bad = os.path.join(good.dir, "hostile_%s.h5" % what)
+        shutil.copy(ck, bad)
+        with h5py.File(bad, "r+") as f:
+            edit(f)
+        hostile.append(("gregoire_d200_hn_2d", arc + ["-pd_dx", "0.01", "-pd_restart", bad], "-pd_restart"))
+    return hostile + [("gregoire_d200_hn_2d", arc + ["-pd_restart", ck + ".missing"], "-pd_restart"),
             ("gregoire_d200_hn_2d", arc + ["-pd_restart", os.path.join(good.dir, "curve.csv")], "-pd_restart"),
             ("gregoire_d200_hn_2d", arc + ["-pd_restart", ck], "-pd_restart"),  # dx 5 mm against the checkpoint's 10 mm
             ("gregoire_d200_hn_2d", arc + ["-pd_dx", "0.01", "-pd_ft", "3e6", "-pd_restart", ck], "-pd_restart"),  # other strength

@@ -46,9 +46,128 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
   PetscFunctionReturn(0);
 }
 
+static const char *const total_names[] = {"steps", "newton_its", "ksp_its", "max_events_per_iteration", "jacobian_assemblies"};
+#define NTOTALS 5
+/* A largest stretch beyond this is no state a path reaches; it only guards the arithmetic (kappa^2). */
+#define PD_KAPPA_MAX 1e6
+
+static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level);
+
+/* Whether every rank's values pass (collective). */
+static PetscErrorCode AllPass(MPI_Comm comm, PetscBool mine, PetscBool *all) {
+  PetscFunctionBeginUser;
+  PetscCall(MPIU_Allreduce(&mine, all, 1, MPIU_BOOL, MPI_LAND, comm));
+  PetscFunctionReturn(0);
+}
+
+/* Every finite, within [lo, hi] (skip: an entry index modulo stride that may be NaN, or -1). */
+static PetscErrorCode VecInRange(Vec x, PetscReal lo, PetscReal hi, PetscInt stride, PetscInt skip, PetscBool *ok) {
+  const PetscScalar *a;
+  PetscInt           n, start;
+  PetscBool          mine = PETSC_TRUE;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecGetLocalSize(x, &n));
+  PetscCall(VecGetOwnershipRange(x, &start, NULL));
+  PetscCall(VecGetArrayRead(x, &a));
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal v = PetscRealPart(a[i]);
+    if (stride > 0 && (start + i) % stride == skip && PetscIsNanReal(v)) continue;
+    if (PetscIsInfOrNanReal(v) || v < lo || v > hi) mine = PETSC_FALSE;
+  }
+  PetscCall(VecRestoreArrayRead(x, &a));
+  PetscCall(AllPass(PetscObjectComm((PetscObject)x), mine, ok));
+  PetscFunctionReturn(0);
+}
+
+/* The values a restart would start from, checked like any other input: counts non-negative, the driver's
+   scalars and the path vectors finite, curve rows finite (the CMOD column may be NaN in a scene without a
+   gauge), bond histories finite and within [0, PD_KAPPA_MAX], limiter levels whole numbers from 0 to 255.
+   bad gets what failed (empty: nothing). */
+static PetscErrorCode CheckValues(const PDModel *m, PetscViewer v, PetscInt nvec, const char *const vec_name[], PetscInt nreal,
+                                  const char *const real_name[], char *bad, size_t len) {
+  MPI_Comm        comm = m->lat->comm;
+  PetscInt        total[NTOTALS], nrows;
+  PetscBool       ok, has;
+  const PetscReal zero = 0;
+  Vec             x, y;
+
+  PetscFunctionBeginUser;
+  bad[0] = '\0';
+  for (PetscInt k = 0; k < NTOTALS; k++) {
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", total_names[k], PETSC_INT, NULL, &total[k]));
+    if (total[k] < 0) {
+      PetscCall(PetscSNPrintf(bad, len, "its %s is %" PetscInt_FMT, total_names[k], total[k]));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(PetscViewerHDF5ReadAttribute(v, "/", "curve_rows", PETSC_INT, NULL, &nrows));
+  if (nrows < 0 || nrows > total[0] + 1) {
+    PetscCall(PetscSNPrintf(bad, len, "it has %" PetscInt_FMT " curve rows for %" PetscInt_FMT " steps", nrows, total[0]));
+    PetscFunctionReturn(0);
+  }
+  for (PetscInt k = 0; k < nreal; k++) {
+    PetscReal r;
+    PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &r));
+    if (PetscIsInfOrNanReal(r)) {
+      PetscCall(PetscSNPrintf(bad, len, "its %s is %g", real_name[k], (double)r));
+      PetscFunctionReturn(0);
+    }
+  }
+  for (PetscInt k = 0; k < nvec; k++) {
+    PetscCall(PetscViewerHDF5HasDataset(v, vec_name[k], &has));
+    if (!has) {
+      PetscCall(PetscSNPrintf(bad, len, "it has no %s", vec_name[k]));
+      PetscFunctionReturn(0);
+    }
+    PetscCall(VecDuplicate(m->f_ref, &x));
+    PetscCall(PetscObjectSetName((PetscObject)x, vec_name[k]));
+    PetscCall(VecLoad(x, v));
+    PetscCall(VecInRange(x, PETSC_MIN_REAL, PETSC_MAX_REAL, 0, -1, &ok));
+    PetscCall(VecDestroy(&x));
+    if (!ok) {
+      PetscCall(PetscSNPrintf(bad, len, "its %s is not finite everywhere", vec_name[k]));
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, nrows) * ROW_FIELDS, &x));
+  PetscCall(PetscObjectSetName((PetscObject)x, "curve"));
+  PetscCall(VecLoad(x, v));
+  PetscCall(VecInRange(x, PETSC_MIN_REAL, PETSC_MAX_REAL, ROW_FIELDS, m->scene->has_cmod ? -1 : 7, &ok));
+  PetscCall(VecDestroy(&x));
+  if (!ok) {
+    PetscCall(PetscSNPrintf(bad, len, "its curve rows are not finite"));
+    PetscFunctionReturn(0);
+  }
+  if (!m->softening) PetscFunctionReturn(0);
+  PetscCall(HistoryVecs(m, &x, &y));
+  PetscCall(VecLoad(x, v));
+  PetscCall(VecLoad(y, v));
+  PetscCall(VecInRange(x, 0, PD_KAPPA_MAX, 0, -1, &ok));
+  if (!ok) PetscCall(PetscSNPrintf(bad, len, "a bond history (largest stretch) is not finite or outside [0, %g]", PD_KAPPA_MAX));
+  if (ok) {
+    const PetscScalar *l;
+    PetscInt           n;
+    PetscBool          mine = PETSC_TRUE;
+    PetscCall(VecInRange(y, 0, 255, 0, -1, &ok));
+    PetscCall(VecGetLocalSize(y, &n));
+    PetscCall(VecGetArrayRead(y, &l));
+    for (PetscInt i = 0; i < n && ok; i++)
+      if (PetscRealPart(l[i]) != PetscFloorReal(PetscRealPart(l[i]))) mine = PETSC_FALSE;
+    PetscCall(VecRestoreArrayRead(y, &l));
+    if (ok) PetscCall(AllPass(comm, mine, &ok));
+    if (!ok) PetscCall(PetscSNPrintf(bad, len, "a limiter level is not a whole number from 0 to 255"));
+  }
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&y));
+  PetscFunctionReturn(0);
+}
+
 /* The file must exist, be HDF5 (its signature, checked here so the message names the option rather than
-   an HDF5 call), carry the checkpoint mark and match this scene's fingerprint. */
-PetscErrorCode PDCheckpointValidate(const PDModel *m, const char *path) {
+   an HDF5 call), carry the checkpoint mark, match this scene's fingerprint and hold values a run can go
+   on from (CheckValues): the driver names its vectors and scalars. */
+PetscErrorCode PDCheckpointValidate(const PDModel *m, const char *path, PetscInt nvec, const char *const vec_name[], PetscInt nreal,
+                                    const char *const real_name[]) {
   MPI_Comm    comm = m->lat->comm;
   PetscBool   exists, mark, same;
   PetscMPIInt rank;
@@ -95,7 +214,12 @@ PetscErrorCode PDCheckpointValidate(const PDModel *m, const char *path) {
                "Option -pd_restart: '%s' belongs to another scene: its %s is %.10g, this scene's is %.10g", path, fingerprint_names[k],
                (double)theirs, (double)fp[k]);
   }
-  PetscCall(PetscViewerDestroy(&v));
+  {
+    char bad[160];
+    PetscCall(CheckValues(m, v, nvec, vec_name, nreal, real_name, bad, sizeof bad));
+    PetscCall(PetscViewerDestroy(&v));
+    PetscCheck(!bad[0], comm, PETSC_ERR_USER_INPUT, "Option -pd_restart: '%s' cannot be gone on from: %s", path, bad);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -274,15 +398,14 @@ static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, Pet
 
 /* Run totals kept with the rows; the driver's own scalars follow them as attributes of the root group. */
 static PetscErrorCode Totals(PDModel *m, PDRecord *rec, PetscViewer v, PetscBool write) {
-  PetscInt                *t[]    = {&rec->steps, &rec->newton_its, &rec->ksp_its, &rec->max_events_per_its, &m->jacobian_assemblies};
-  static const char *const name[] = {"steps", "newton_its", "ksp_its", "max_events_per_iteration", "jacobian_assemblies"};
+  PetscInt *t[NTOTALS] = {&rec->steps, &rec->newton_its, &rec->ksp_its, &rec->max_events_per_its, &m->jacobian_assemblies};
 
   PetscFunctionBeginUser;
-  for (size_t k = 0; k < sizeof t / sizeof t[0]; k++) {
+  for (PetscInt k = 0; k < NTOTALS; k++) {
     if (write)
-      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", name[k], PETSC_INT, t[k]));
+      PetscCall(PetscViewerHDF5WriteAttribute(v, "/", total_names[k], PETSC_INT, t[k]));
     else
-      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", name[k], PETSC_INT, NULL, t[k]));
+      PetscCall(PetscViewerHDF5ReadAttribute(v, "/", total_names[k], PETSC_INT, NULL, t[k]));
   }
   PetscFunctionReturn(0);
 }

@@ -447,6 +447,12 @@ static const char *const state_names[] = {"step",           "lambda",           
 _Static_assert(sizeof state_names / sizeof state_names[0] == NSTATE, "one name per checkpointed scalar");
 static const char *const state_vec_names[] = {"displacement", "internal_force", "last_step"};
 
+PetscErrorCode PDArcLengthValidateRestart(const PDModel *m, const char *path) {
+  PetscFunctionBeginUser;
+  PetscCall(PDCheckpointValidate(m, path, 3, state_vec_names, NSTATE, state_names));
+  PetscFunctionReturn(0);
+}
+
 static void PackState(Arc *a, const PDPath *p) {
   const PetscReal v[NSTATE] = {(PetscReal)p->step,
                                p->lambda_n,
