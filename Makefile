@@ -6,7 +6,7 @@ SCENE ?= options/gregoire_d50_hn.opts
 export OMPI_ALLOW_RUN_AS_ROOT := 1
 export OMPI_ALLOW_RUN_AS_ROOT_CONFIRM := 1
 
-.PHONY: all deps build run test format clean
+.PHONY: all deps build run test sanitize format clean
 
 all: build
 
@@ -24,6 +24,14 @@ run: build
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
+
+# the fast tests (CTest label "fast") on a build with AddressSanitizer and UndefinedBehaviorSanitizer; leak
+# reports are off: Open MPI and PETSc keep allocations until the process exits
+sanitize: deps
+	cmake -S . -B $(BUILD)-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPD_SANITIZE=ON
+	cmake --build $(BUILD)-sanitize -j $(JOBS)
+	cd $(BUILD)-sanitize && ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) -L fast
 
 format:
 	clang-format -i src/*.c src/*/*.c src/*/*.h include/*.h tests/*.c

@@ -54,10 +54,12 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
   const PDScene   *sc  = m->scene;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
-  PetscInt        *owner, conflict[2] = {PETSC_MAX_INT, PETSC_MAX_INT}, gconflict[2], nfix = 0, niso = 0, nzero = 0;
-  PetscInt         count[PD_MAX_REGIONS], gcount[PD_MAX_REGIONS];
-  Vec              fixl;
-  PetscScalar     *fx, *ur, *fr;
+  /* the first conflicting pair of regions (a, b), coded a * PD_MAX_REGIONS + b so that one MPI_MIN finds
+     the same pair on every rank */
+  PetscInt    *owner, conflict = PETSC_MAX_INT, gconflict, nfix = 0, niso = 0, nzero = 0;
+  PetscInt     count[PD_MAX_REGIONS], gcount[PD_MAX_REGIONS];
+  Vec          fixl;
+  PetscScalar *fx, *ur, *fr;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(bs * lat->nowned, &owner));
@@ -83,17 +85,11 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
         const PetscInt k = bs * i + a;
         if (reg->kind == PD_REGION_FORCE) {
           fr[k] += reg->vector[a] / gcount[r];
-          if (reg->vector[a] != 0 && owner[k] >= 0 && r * PD_MAX_REGIONS + owner[k] < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
-            conflict[0] = r;
-            conflict[1] = owner[k];
-          }
+          if (reg->vector[a] != 0 && owner[k] >= 0) conflict = PetscMin(conflict, r * PD_MAX_REGIONS + owner[k]);
           continue;
         }
         if (!reg->dof[a]) continue;
-        if (owner[k] >= 0 && r * PD_MAX_REGIONS + owner[k] < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
-          conflict[0] = r;
-          conflict[1] = owner[k];
-        }
+        if (owner[k] >= 0) conflict = PetscMin(conflict, r * PD_MAX_REGIONS + owner[k]);
         owner[k] = r;
         ur[k]    = reg->kind == PD_REGION_DISPLACEMENT ? reg->vector[a] : 0;
       }
@@ -107,16 +103,13 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
       if (InRegion(&reg->where, lat, i, sc))
         for (PetscInt a = 0; a < bs; a++) {
           const PetscInt k = bs * i + a;
-          if (reg->vector[a] != 0 && owner[k] > r && owner[k] * PD_MAX_REGIONS + r < conflict[0] * PD_MAX_REGIONS + conflict[1]) {
-            conflict[0] = owner[k];
-            conflict[1] = r;
-          }
+          if (reg->vector[a] != 0 && owner[k] > r) conflict = PetscMin(conflict, owner[k] * PD_MAX_REGIONS + r);
         }
   }
-  PetscCall(MPIU_Allreduce(conflict, gconflict, 2, MPIU_INT, MPI_MIN, lat->comm));
-  PetscCheck(gconflict[0] == PETSC_MAX_INT, lat->comm, PETSC_ERR_USER_INPUT,
-             "Options %s and %s: conflicting boundary conditions on the same degree of freedom", sc->region[gconflict[0]].option,
-             sc->region[gconflict[1]].option);
+  PetscCall(MPIU_Allreduce(&conflict, &gconflict, 1, MPIU_INT, MPI_MIN, lat->comm));
+  PetscCheck(gconflict == PETSC_MAX_INT, lat->comm, PETSC_ERR_USER_INPUT,
+             "Options %s and %s: conflicting boundary conditions on the same degree of freedom",
+             sc->region[gconflict / PD_MAX_REGIONS].option, sc->region[gconflict % PD_MAX_REGIONS].option);
   PetscCall(VecRestoreArray(m->u_ref, &ur));
   PetscCall(VecRestoreArray(m->f_ref, &fr));
 
