@@ -20,7 +20,12 @@ SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 # configurations compared: label -> extra options
 CONFIGS = {"default": [], "no predictor": ["-pd_predictor", "false"],
            "previous defaults": ["-pd_predictor", "false", "-snes_rtol", "1e-8", "-snes_ksp_ew_version", "2"],
-           "limiter cap 40": ["-pd_limiter_max_bonds", "40"], "no limiter cap": ["-pd_limiter_max_bonds", "0"]}
+           "limiter cap 5": ["-pd_limiter_max_bonds", "5"], "limiter cap 40": ["-pd_limiter_max_bonds", "40"],
+           "limiter cap 80": ["-pd_limiter_max_bonds", "80"], "no limiter cap": ["-pd_limiter_max_bonds", "0"],
+           # linear solves and preconditioner: a fixed linear tolerance instead of Eisenstat-Walker, ICC with one
+           # level of fill, and ICC of the (positive) secant stiffness instead of the indefinite tangent
+           "linear rtol 1e-2": ["-snes_ksp_ew", "false", "-ksp_rtol", "1e-2"], "ICC(1)": ["-sub_pc_factor_levels", "1"],
+           "secant preconditioner": ["-pd_pc_matrix", "secant"]}
 # -log_view events reported, in this order: pdimplicit's own (include/pd_log.h) and PETSc's solver events
 EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
           "PCApply", "MatMult", "MatSolve"]

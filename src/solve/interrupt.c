@@ -1,13 +1,13 @@
 /* Ending a long run on SIGTERM, SIGINT or SIGHUP (a batch system's time limit, Ctrl-C, a closed
    terminal): the path loops stop, write curve, summary and the fields of the last accepted step, and
    report the run as interrupted, so hours of a large beam are not lost with the process. A step under
-   way is abandoned: its Newton and Krylov iterations look for the signal too (PDInterruptWatch), since
-   one step of a large 3D beam can take minutes. A second
-   signal of the same kind ends the process at once (the handler is reset after the first). Every rank
-   checks the flag with one reduction per step (and per watched iteration), so all ranks stop at the same place (mpiexec forwards
-   the signal to each rank). The handlers are installed with sigaction after MPI and PETSc are up:
-   PetscPushSignalHandler does not see SIGTERM once Open MPI has taken it (measured: the process died by
-   the signal with the PETSc handler pushed). */
+   way is abandoned: its Newton and Krylov iterations look for the signal too (PDInterruptWatchKSP and
+   PDInterruptWatchSNES), since one step of a large 3D beam can take minutes. A second signal of the same
+   kind ends the process at once (the handler is reset after the first). Every rank checks the flag with
+   one reduction per step and per watched iteration, so all ranks stop at the same place (mpiexec
+   forwards the signal to each rank). The handlers are installed with sigaction after MPI and PETSc are
+   up: PetscPushSignalHandler does not see SIGTERM once Open MPI has taken it (measured: the process died
+   by the signal with the PETSc handler pushed). */
 #define _POSIX_C_SOURCE 200809L
 #include <signal.h>
 #include "pd_solve.h"
