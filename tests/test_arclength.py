@@ -376,7 +376,27 @@ def restart():
               its_slack=2)
 
 
+def l_panel():
+    # A mixed-mode hard case with a void: the L-shaped panel (options/l_panel_2d.opts, here at dx = 12.5 mm)
+    # traced by path following until the load falls below 10 % of its peak. The crack must start at the
+    # re-entrant corner and run across the leg along the arm's underside: every damaged node away from the
+    # load point lies within 2 dx of y = 0.25 m, one lies within 2 dx of the corner, and the crack has
+    # crossed most of the leg (0.25 m) by then.
+    dx = 0.0125
+    r = run("l_panel_2d", "-pd_dx", dx)
+    s = r.summary
+    check(s["status"].startswith("separated") and s["void_nodes"] > 0, "status: %s (%d void nodes)" % (s["status"], s["void_nodes"]))
+    x, _, d = r.fields()
+    crack = x[(d > 0.35) & np.isfinite(d) & (x[:, 0] < 0.4)]
+    check(len(crack) > 0 and np.all(np.abs(crack[:, 1] - 0.25) <= 2 * dx), "%d damaged nodes, at y from %.4f to %.4f m" % (
+        len(crack), crack[:, 1].min(), crack[:, 1].max()))
+    corner = np.hypot(crack[:, 0] - 0.25, crack[:, 1] - 0.25).min()
+    check(corner <= 2 * dx, "the crack reaches the re-entrant corner (nearest damaged node %.4f m from it)" % corner)
+    check(crack[:, 0].max() - crack[:, 0].min() >= 0.6 * 0.25, "the crack spans x = %.3f to %.3f m of the 0.25 m leg" % (
+        crack[:, 0].min(), crack[:, 0].max()))
+
+
 if __name__ == "__main__":
     {"constraints": constraints, "separation": separation, "snapback": snapback, "reversal": reversal, "contrast": contrast,
      "stepsize": stepsize, "limiter": limiter, "kink": kink, "sublevels": sublevels, "implex": implex, "mpi": mpi, "augmented": augmented,
-     "interrupt": interrupt, "restart": restart}[sys.argv[1]]()
+     "interrupt": interrupt, "restart": restart, "l_panel": l_panel}[sys.argv[1]]()
