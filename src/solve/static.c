@@ -93,6 +93,28 @@ static PetscErrorCode Predict(PDModel *m, SNES snes, PetscReal atol0, Vec r, Vec
   PetscFunctionReturn(0);
 }
 
+/* Incomplete Cholesky is not positive for every positive definite matrix: at dx = 50 mm the cantilever's
+   block ICC(0) has negative pivots, and CG stops with KSP_DIVERGED_INDEFINITE_PC although the stiffness
+   is definite. GMRES needs no positive preconditioner and converges with the same factor, so the run goes
+   on with it (once; the summary's solver names it). */
+static PetscErrorCode SwitchFromCG(SNES snes, PetscBool *retry) {
+  KSP                ksp;
+  KSPConvergedReason kr;
+  PetscBool          cg;
+
+  PetscFunctionBeginUser;
+  *retry = PETSC_FALSE;
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetConvergedReason(ksp, &kr));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPCG, &cg));
+  if (!cg || kr != KSP_DIVERGED_INDEFINITE_PC) PetscFunctionReturn(0);
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ksp), "  CG met an indefinite preconditioner: going on with GMRES\n"));
+  PetscCall(KSPSetType(ksp, KSPGMRES));
+  PetscCall(KSPGMRESSetRestart(ksp, 60));
+  *retry = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 static PetscBool FieldsDue(const PDScene *sc, PetscInt step, PetscBool last) {
   if (last) return PETSC_TRUE;
   return (sc->fields_every > 0 && step % sc->fields_every == 0) ? PETSC_TRUE : PETSC_FALSE;
@@ -201,10 +223,12 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     rec->newton_its += res.its;
     rec->ksp_its += res.lits;
     if (!res.ok) {
-      PetscBool stop;
+      PetscBool stop, retry;
       PetscCall(PDModelRestoreLevels(m));
       PetscCall(PDStopInsideStep(rec, &stop));
       if (stop) break;
+      PetscCall(SwitchFromCG(snes, &retry));
+      if (retry) continue; /* the same increment again, now with GMRES */
       if (m->linear || dl * 0.5 < sc->dlambda_min) {
         rec->converged = PETSC_FALSE;
         PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g (%s); increment %g at its floor", (double)lam,
