@@ -74,6 +74,8 @@ static const char *OutputProblem(const char *dir, char *where, size_t len) {
   return NULL;
 }
 
+#define PD_OUTPUT_DIR_MAX 200 /* leaves room for "/checkpoint.h5.tmp" below the limit met */
+
 PetscErrorCode PDOutputCheck(MPI_Comm comm, const PDScene *sc) {
   PetscMPIInt rank;
   char        msg[PETSC_MAX_PATH_LEN + 64] = "";
@@ -87,6 +89,11 @@ PetscErrorCode PDOutputCheck(MPI_Comm comm, const PDScene *sc) {
   }
   PetscCallMPI(MPI_Bcast(msg, (PetscMPIInt)sizeof msg, MPI_CHAR, 0, comm));
   PetscCheck(!msg[0], comm, PETSC_ERR_USER_INPUT, "Option -pd_output_dir: cannot write to '%s': %s", sc->output_dir, msg);
+  /* the MPI-IO layer under HDF5 aborted the process (a glibc buffer check) on file paths from about 240
+     characters: longer output directories are refused here, before the run rather than after it */
+  PetscCheck(strlen(sc->output_dir) <= PD_OUTPUT_DIR_MAX, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_output_dir: the path has %zu characters, at most %d are accepted (HDF5's parallel I/O fails on longer ones)",
+             strlen(sc->output_dir), PD_OUTPUT_DIR_MAX);
   PetscFunctionReturn(0);
 }
 

@@ -71,6 +71,15 @@ static PetscErrorCode ReadDiscretisation(PetscOptionItems *PetscOptionsObject, P
 
   PetscFunctionBeginUser;
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_horizon_ratio", &sc->horizon_ratio, NULL));
+  {
+    /* a horizon past the body's longest side bonds every node to every other: no local model is left,
+       and the stencil of lattice offsets would outgrow memory */
+    PetscReal side = 0;
+    for (PetscInt a = 0; a < sc->dim; a++) side = PetscMax(side, sc->domain[3 + a] - sc->domain[a]);
+    PetscCheck(sc->horizon_ratio * sc->dx <= side, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option -pd_horizon_ratio: %g makes the horizon %g m, longer than the body's longest side %g m", (double)sc->horizon_ratio,
+               (double)(sc->horizon_ratio * sc->dx), (double)side);
+  }
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_influence", &v, NULL));
   sc->influence = (PDInfluence)v;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_partial_volume", &sc->partial_volume, NULL));
