@@ -91,7 +91,7 @@ PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt 
 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
-  PetscInt    layer, g[4], nvoid = 0;
+  PetscInt    layer, g[4], nvoid = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(lat, sizeof *lat));
@@ -137,19 +137,19 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
         break;
       }
     lat->hollow[l] = PETSC_FALSE;
-    for (PetscInt v = 0; v < sc->nvoids && !lat->hollow[l]; v++)
-      lat->hollow[l] = PDGeometryContains(&sc->voids[v].where, &lat->x[3 * l], sc);
+    for (PetscInt v = 0; v < sc->nvoids; v++)
+      if (PDGeometryContains(&sc->voids[v].where, &lat->x[3 * l], sc)) {
+        lat->hollow[l] = PETSC_TRUE;
+        if (l < lat->nowned) invoid_mine[v]++;
+      }
     if (l < lat->nowned && lat->hollow[l]) nvoid++;
   }
   PetscCall(MPIU_Allreduce(&nvoid, &lat->nvoid, 1, MPIU_INT, MPI_SUM, comm));
-  for (PetscInt v = 0; v < sc->nvoids; v++) {
-    PetscInt mine = 0, all;
-    for (PetscInt l = 0; l < lat->nowned; l++) mine += PDGeometryContains(&sc->voids[v].where, &lat->x[3 * l], sc);
-    PetscCall(MPIU_Allreduce(&mine, &all, 1, MPIU_INT, MPI_SUM, comm));
-    PetscCheck(all > 0, comm, PETSC_ERR_USER_INPUT,
+  PetscCall(MPIU_Allreduce(invoid_mine, invoid, PD_MAX_VOIDS, MPIU_INT, MPI_SUM, comm));
+  for (PetscInt v = 0; v < sc->nvoids; v++)
+    PetscCheck(invoid[v] > 0, comm, PETSC_ERR_USER_INPUT,
                "Option %s_%s: the void contains no node (it must hold at least one node's cell centre)", sc->voids[v].option,
                sc->voids[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
-  }
   PetscCheck(lat->nvoid < lat->nglobal, comm, PETSC_ERR_USER_INPUT, "Options -pd_void*: the voids leave no material in the domain");
   PetscFunctionReturn(0);
 }

@@ -249,10 +249,24 @@ static PetscErrorCode HasOption(const char *fmt, PetscInt k, PetscBool *has) {
   PetscFunctionReturn(0);
 }
 
+/* A region or void exists once its box or its cylinder is given. */
+static PetscErrorCode HasShape(const char *prefix, PetscInt k, PetscBool *has) {
+  char      opt[64];
+  PetscBool box, cyl;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s%" PetscInt_FMT "_box", prefix, k));
+  PetscCall(PetscOptionsHasName(NULL, NULL, opt, &box));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s%" PetscInt_FMT "_cylinder", prefix, k));
+  PetscCall(PetscOptionsHasName(NULL, NULL, opt, &cyl));
+  *has = box || cyl ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
 /* A member is counted before it is read, so that the schema sees it exist; options of members after a
    gap are left unread, and reported as unused. */
 PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *sc) {
-  PetscBool has, hc;
+  PetscBool has;
 
   PetscFunctionBeginUser;
   sc->nmaterials = 1;
@@ -270,16 +284,14 @@ PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *s
     PetscCall(ReadNotch(PetscOptionsObject, sc, k));
   }
   for (PetscInt k = 0; k < PD_MAX_REGIONS; k++) {
-    PetscCall(HasOption("-pd_region%" PetscInt_FMT "_box", k, &has));
-    PetscCall(HasOption("-pd_region%" PetscInt_FMT "_cylinder", k, &hc));
-    if (!has && !hc) break;
+    PetscCall(HasShape("-pd_region", k, &has));
+    if (!has) break;
     sc->nregions = k + 1;
     PetscCall(ReadRegion(PetscOptionsObject, sc, k));
   }
   for (PetscInt k = 0; k < PD_MAX_VOIDS; k++) {
-    PetscCall(HasOption("-pd_void%" PetscInt_FMT "_box", k, &has));
-    PetscCall(HasOption("-pd_void%" PetscInt_FMT "_cylinder", k, &hc));
-    if (!has && !hc) break;
+    PetscCall(HasShape("-pd_void", k, &has));
+    if (!has) break;
     sc->nvoids = k + 1;
     PetscCall(ReadVoid(PetscOptionsObject, sc, k));
   }
