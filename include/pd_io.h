@@ -31,6 +31,11 @@ typedef struct {
   char        dir[PETSC_MAX_PATH_LEN];
   char        restart_from[PETSC_MAX_PATH_LEN]; /* checkpoint the path went on from, or empty */
   PetscInt    restart_step;                     /* its step */
+  /* load or displacement control that handed over to path following (-pd_control_fallback) */
+  PetscInt  fallback_step;        /* after this accepted step; 0: it did not */
+  PetscReal fallback_lambda;      /* its load factor */
+  char      fallback_why[160];    /* why plain control stopped */
+  PetscInt  fallback_implex_step; /* path following went on with IMPL-EX after this step; 0: it did not */
   /* explicit path */
   PetscReal eig_est, eig_bound; /* largest eigenvalue of M^-1 K: power-iteration estimate, Gershgorin bound (1/s^2) */
   PetscReal dt_stable, dt;      /* stable step 2/sqrt(eig_est) and step used (s) */

@@ -150,9 +150,10 @@ typedef struct {
   PetscInt   load_region; /* region whose force or reaction is the curve's load */
   PetscInt   disp_region; /* region whose mean displacement is the curve's displacement */
   PetscBool  has_cmod;
-  PetscReal  cmod[6];   /* two gauge points */
-  PetscInt   steps;     /* load steps */
-  PetscBool  predictor; /* load/displacement control: secant predictor from the last increment */
+  PetscReal  cmod[6];          /* two gauge points */
+  PetscInt   steps;            /* load steps */
+  PetscBool  predictor;        /* load/displacement control: secant predictor from the last increment */
+  PetscBool  control_fallback; /* load/displacement control: path following where it finds no equilibrium */
   PetscInt   fields_every;
   PetscInt   checkpoint_every;            /* path following: write checkpoint.h5 every N accepted steps; 0: only when stopped early */
   char       restart[PETSC_MAX_PATH_LEN]; /* path following: checkpoint to go on from, or empty */
@@ -191,6 +192,8 @@ PetscErrorCode PDSceneOptionsHelp(MPI_Comm, const PDScene *, const char *note);
 /* The README's option table, in Markdown (-pd_help_markdown). */
 PetscErrorCode PDSceneOptionsMarkdown(MPI_Comm);
 PetscErrorCode PDSceneView(const PDScene *, PetscViewer);
+/* Whether a material has a law that damages bonds (every law but elastic). */
+PetscBool PDSceneHasDamage(const PDScene *);
 /* Whether a region holds the node at x. A box with zero extent along an axis selects one layer of nodes:
    the nearest to its plane; a plane halfway between two layers takes the upper one, except on the
    domain's upper face, where it takes the layer below. */

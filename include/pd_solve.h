@@ -9,6 +9,7 @@ PetscErrorCode PDArcLengthRun(PDModel *, PDRecord *);
 PetscErrorCode PDArcLengthValidateRestart(const PDModel *, const char *path);
 PetscErrorCode PDSolverConfigureKSP(PDModel *, KSP);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
+PetscErrorCode PDExplicitPlan(PDModel *, PDRecord *);
 PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);
 /* SIGTERM, SIGINT and SIGHUP end a run after the step under way (src/solve/interrupt.c). */
 PetscErrorCode PDInterruptInstall(void);

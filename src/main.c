@@ -44,6 +44,7 @@ static PetscErrorCode BuildProblem(Run *r) {
   PetscCall(PDBondsCreate(&r->sc, &r->lat, keep, &r->bonds));
   PetscCall(PDModelCreate(&r->sc, &r->lat, &r->bonds, &r->model));
   if (r->sc.restart[0]) PetscCall(PDArcLengthValidateRestart(&r->model, r->sc.restart));
+  if (r->sc.explicit_mode || r->sc.failure_search) PetscCall(PDExplicitPlan(&r->model, &r->rec));
   PetscCall(PetscTime(&t1));
   r->rec.t_setup = t1 - t0;
   PetscFunctionReturn(0);

@@ -396,7 +396,63 @@ def l_panel():
         crack[:, 0].min(), crack[:, 0].max()))
 
 
+def eccentric():
+    # A mixed-mode hard case on the default path: the beam notched a quarter span off its load
+    # (options/eccentric_notch_2d.opts, dx = 5 mm) under displacement control, traced until the load falls
+    # below 10 % of its peak. The crack starts at the notch tip (x = 112.5 mm, y = 50 mm) and turns
+    # towards the load point (x = 200 mm): its damaged nodes above the tip lie on the load's side of the
+    # notch plane, and the highest of them at least 5 mm (one dx) towards the load.
+    r = run("eccentric_notch_2d")
+    s = r.summary
+    check(s["status"].startswith("separated"), "status: %s" % s["status"])
+    x, _, d = r.fields()
+    crack = x[(d > 0.35) & np.isfinite(d) & (x[:, 1] > 0.05)]
+    check(len(crack) > 0 and np.hypot(crack[:, 0] - 0.1125, crack[:, 1] - 0.05).min() <= 2 * 0.005,
+          "the crack starts at the notch tip (%d damaged nodes above it)" % len(crack))
+    top = crack[np.argmax(crack[:, 1])]
+    check(np.all(crack[:, 0] >= 0.1125 - 0.005) and top[0] >= 0.1125 + 0.005,
+          "the crack turns towards the load: damaged nodes from x = %.4f m, the highest at (%.4f, %.4f) m" % (
+              crack[:, 0].min(), top[0], top[1]))
+
+
+def fallback():
+    # The default path does not give up. The same eccentric-notch beam loaded by a force, whose control has
+    # no equilibrium past the peak: load control cuts its increment to the floor, hands over to path
+    # following (summary.json says from which step and why), and the run ends at 10 % of the peak. Its peak
+    # lies within 1 % of the displacement-controlled one (the load steps of either resolve the peak to about
+    # 0.5 %), and the curve goes on from the step it was handed over at.
+    ref = run("eccentric_notch_2d").summary
+    opts = os.path.join(tempfile.mkdtemp(prefix="pdtest_"), "eccentric_force.opts")
+    with open(scene("eccentric_notch_2d")) as f, open(opts, "w") as g:
+        g.writelines(l for l in f if not l.startswith(("-pd_region2_kind", "-pd_region2_dofs", "-pd_region2_displacement")))
+    r = run(None, "-options_file", opts, "-pd_region2_kind", "force", "-pd_region2_force", "0,-4000")
+    s = r.summary
+    fb = s.get("path_following_from")
+    check(fb is not None and fb["step"] > 0 and "load control found no equilibrium" in fb["why"], "hand-over: %s" % fb)
+    check(s["status"].startswith("separated") and s["steps"] > fb["step"], "status: %s after %d steps" % (s["status"], s["steps"]))
+    check(rel(s["peak_load_N"], ref["peak_load_N"]) < 0.01, "peak %.1f N under force control, %.1f N under displacement control" % (
+        s["peak_load_N"], ref["peak_load_N"]))
+    cmod = np.array([row["cmod_m"] for row in r.curve])[fb["step"] - 1:]
+    check(np.all(np.diff(cmod) > 0), "the notch opens at every step after the hand-over")
+
+
+def den_tension():
+    # A hard case in tension: the double-edge-notched prism (options/den_tension_2d.opts, dx = 5 mm) under
+    # displacement control. At about a quarter of the peak what is left of the ligament softens as a whole;
+    # plain control, then implicit path following find no equilibrium there, and the fallback goes on with
+    # IMPL-EX until the load falls below 10 % of its peak. By then the ligament (50 x 50 mm) has dissipated more than half of its
+    # fracture energy Gf A = 0.358 J, and no more than all of it.
+    r = run("den_tension_2d")
+    s = r.summary
+    fb = s.get("path_following_from")
+    check(fb is not None and fb["implex_from_step"] > fb["step"] > 0, "hand-overs: %s" % fb)
+    check(s["status"].startswith("separated"), "status: %s" % s["status"])
+    dissipated = r.curve[-1]["dissipated_J"]
+    check(0.5 * 0.358 < dissipated <= 0.358, "dissipated %.4f J of Gf A = 0.358 J" % dissipated)
+
+
 if __name__ == "__main__":
     {"constraints": constraints, "separation": separation, "snapback": snapback, "reversal": reversal, "contrast": contrast,
      "stepsize": stepsize, "limiter": limiter, "kink": kink, "sublevels": sublevels, "implex": implex, "mpi": mpi, "augmented": augmented,
-     "interrupt": interrupt, "restart": restart, "l_panel": l_panel}[sys.argv[1]]()
+     "interrupt": interrupt, "restart": restart, "l_panel": l_panel, "eccentric": eccentric,
+     "fallback": fallback, "den_tension": den_tension}[sys.argv[1]]()

@@ -23,6 +23,9 @@ CASES = [
     ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.06", "-pd_notch1_box", "0.5,0,0.05,0.5,0.1,0.1"], "-pd_notch1_box"),  # two that meet
     ("cantilever", ["-pd_notch0_box", "0.5,0,0,0.5,0.1,0.05", "-pd_void0_box", "0.49,0,0.04,0.6,0.1,0.1"], "-pd_void0_box"),  # notch + void
     ("cantilever", ["-pd_dx", "abc"], "-pd_dx"),
+    # explicit step counts past any integer, found from the stable step before anything is written
+    ("cantilever", ["-pd_mode", "explicit", "-pd_ramp_time", "1e6"], "-pd_ramp_time"),
+    ("cantilever", ["-pd_mode", "explicit", "-pd_dt_safety", "1e-9"], "-pd_dt_safety"),  # the default ramp, in tiny steps
     ("cantilever", ["-pd_region1_force", "0,zero,-1e4"], "-pd_region1_force"),
     ("cantilever", ["-pd_region2_box", "-0.08,0,0,0,0.1,0.1", "-pd_region2_kind", "displacement", "-pd_region2_dofs", "z",
                     "-pd_region2_displacement", "0,0,1e-3"], "-pd_region2"),  # conflicts with the clamp

@@ -37,12 +37,14 @@ MISSPELT = [
     ("gregoire_d50_hn", ["-pd_arclenght_type", "cmod"], ["-pd_arclenght_type", "did you mean -pd_arclength_type?"]),
     # valid options where the scene does not use them
     ("cantilever", ["-pd_ramp_time", "0.05"], ["-pd_ramp_time", "explicit"]),
-    ("gregoire_d50_hn", ["-pd_stop_fraction", "0.1"], ["-pd_stop_fraction", "path following"]),
+    ("gregoire_d50_hn", ["-pd_control_fallback", "false", "-pd_stop_fraction", "0.1"], ["-pd_stop_fraction", "path following"]),
+    ("cantilever", ["-pd_stop_fraction", "0.1"], ["-pd_stop_fraction", "path following"]),  # no damage: no fallback
+    ("cantilever", ["-pd_control_fallback", "false"], ["-pd_control_fallback", "a scene with damage"]),
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_limiter_max_bonds", "3"], ["-pd_limiter_max_bonds", "implicit"]),
     ("gregoire_d50_hn", ["-pd_nonlinear_k", "20", "-pd_law", "trilinear"], ["-pd_nonlinear_k", "non-linear law"]),
     ("cantilever", ["-pd_thickness", "0.1"], ["-pd_thickness", "2D"]),
     ("cantilever", ["-pd_region1_displacement", "0,0,1e-3"], ["-pd_region1_displacement", "displacement regions"]),
-    ("gregoire_d50_hn", ["-pd_augmented_ksp_monitor"], ["-pd_augmented_ksp_monitor", "augmented"]),
+    ("gregoire_d50_hn", ["-pd_control_fallback", "false", "-pd_augmented_ksp_monitor"], ["-pd_augmented_ksp_monitor", "augmented"]),
 ]
 NUMBERING = [
     ("cantilever", ["-pd_region7_box", "0,0,0,0.1,0.1,0.1", "-pd_region7_kind", "monitor"], ["-pd_region7_", "no region 2"]),

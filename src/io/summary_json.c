@@ -182,6 +182,14 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          m->broken, m->softening_bonds, rec->max_events_per_its, m->max_regularised));
   PetscCall(PetscFPrintf(comm, fp, "  \"peak_load_N\": %s,\n  \"disp_at_peak_m\": %s,\n  \"final_load_N\": %s,\n", peak, dpeak, fin));
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
+  if (rec->fallback_step > 0) {
+    PetscCall(PDEscapeJSON(rec->fallback_why, &text));
+    PetscCall(PetscFPrintf(comm, fp,
+                           "  \"path_following_from\": {\"step\": %" PetscInt_FMT
+                           ", \"load_factor\": %.10g, \"why\": %s, \"implex_from_step\": %" PetscInt_FMT "},\n",
+                           rec->fallback_step, (double)rec->fallback_lambda, text, rec->fallback_implex_step));
+    PetscCall(PetscFree(text));
+  }
   if (rec->restart_from[0]) {
     PetscCall(PDEscapeJSON(rec->restart_from, &text));
     PetscCall(PetscFPrintf(comm, fp, "  \"restart\": {\"from\": %s, \"step\": %" PetscInt_FMT "},\n", text, rec->restart_step));

@@ -244,11 +244,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->lat   = lat;
   m->bonds = bd;
   m->bs    = sc->dim;
-  for (PetscInt k = 0; k < sc->nmaterials; k++) {
-    PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
-    if (sc->material[k].law != PD_LAW_ELASTIC) m->softening = PETSC_TRUE;
-  }
-  m->linear = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening) ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt k = 0; k < sc->nmaterials; k++) PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
+  m->softening = PDSceneHasDamage(sc);
+  m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening) ? PETSC_TRUE : PETSC_FALSE;
   /* limiter cap: 10 events per 150,000 bonds by default. N = 10 suits the D = 50 beams at dx = 5 mm
      (157,000 bonds; N = 1, 10 and 100 give peaks within 1.3 %); at dx = 2.5 mm (1.48 M bonds) N = 10 took
      130 Newton iterations per increment near the peak, N = 100 about 25 (docs/softening.md). */

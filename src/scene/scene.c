@@ -198,6 +198,12 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscFunctionReturn(0);
 }
 
+PetscBool PDSceneHasDamage(const PDScene *sc) {
+  for (PetscInt k = 0; k < sc->nmaterials; k++)
+    if (sc->material[k].law != PD_LAW_ELASTIC) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
 PetscErrorCode PDSceneView(const PDScene *sc, PetscViewer v) {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(v, "Scene %s: %s, domain [%g %g %g] to [%g %g %g] m, dx %g m, horizon %g dx, influence %s\n", sc->name,

@@ -47,6 +47,9 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCheck(sc->control >= PD_CONTROL_ARCLENGTH || (sc->control == PD_CONTROL_FORCE) == (load->kind == PD_REGION_FORCE), comm,
              PETSC_ERR_USER_INPUT, "Option -pd_control: '%s' does not match the load region %s, which is a %s region",
              PDControlNames[sc->control], load->option, PDRegionKinds[load->kind]);
+  /* read first: whether the path-following options apply depends on it */
+  sc->control_fallback = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_control_fallback", &sc->control_fallback, NULL));
   PetscCall(ReadPathFollowing(PetscOptionsObject, comm, sc));
   sc->predictor = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_predictor", &sc->predictor, NULL));

@@ -113,10 +113,14 @@ const char *PDSchemaWhenText(PDOptionWhen w) {
     return "the implicit path (-pd_mode implicit)";
   case PD_WHEN_CONTROL:
     return "load or displacement control (-pd_control displacement or force, implicit)";
+  case PD_WHEN_FALLBACK:
+    return "load or displacement control on a scene with damage (a law other than elastic)";
   case PD_WHEN_EXPLICIT:
     return "the explicit path (-pd_mode explicit)";
   case PD_WHEN_PATH:
-    return "path following (-pd_control arclength or auto, implicit)";
+    return "path following (-pd_control arclength or auto, or the fallback of load or displacement control on a scene with damage)";
+  case PD_WHEN_PATH_RUN:
+    return "path following chosen (-pd_control arclength or auto, implicit)";
   case PD_WHEN_PATH_LINEAR:
     return "path following under the cmod or dissipation constraint";
   case PD_WHEN_AUGMENTED:
@@ -146,7 +150,8 @@ PetscInt PDSchemaFamilyCount(PDOptionFamily f, const PDScene *sc) {
 
 PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
   const PetscBool   implicit = sc->explicit_mode ? PETSC_FALSE : PETSC_TRUE;
-  const PetscBool   path     = implicit && sc->control >= PD_CONTROL_ARCLENGTH ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool   chosen   = implicit && sc->control >= PD_CONTROL_ARCLENGTH ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool   path     = chosen || (implicit && sc->control_fallback && PDSceneHasDamage(sc)) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool   linear   = path && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
   const PDMaterial *mat      = &sc->material[s->family == PD_FAMILY_MATERIAL ? k : 0];
   const PDRegion   *reg      = &sc->region[s->family == PD_FAMILY_REGION ? k : 0];
@@ -177,11 +182,15 @@ PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
   case PD_WHEN_IMPLICIT:
     return implicit;
   case PD_WHEN_CONTROL:
-    return implicit && !path ? PETSC_TRUE : PETSC_FALSE;
+    return implicit && !chosen ? PETSC_TRUE : PETSC_FALSE;
+  case PD_WHEN_FALLBACK:
+    return implicit && !chosen && PDSceneHasDamage(sc) ? PETSC_TRUE : PETSC_FALSE;
   case PD_WHEN_EXPLICIT:
     return sc->explicit_mode;
   case PD_WHEN_PATH:
     return path;
+  case PD_WHEN_PATH_RUN:
+    return chosen;
   case PD_WHEN_PATH_LINEAR:
     return linear;
   case PD_WHEN_AUGMENTED:

@@ -20,9 +20,11 @@ typedef enum {
   PD_WHEN_DISPLACEMENT,
   PD_WHEN_FORCE,
   PD_WHEN_IMPLICIT,
-  PD_WHEN_CONTROL, /* implicit under load or displacement control (not path following) */
+  PD_WHEN_CONTROL,  /* implicit under load or displacement control (not path following) */
+  PD_WHEN_FALLBACK, /* the same, on a scene with damage */
   PD_WHEN_EXPLICIT,
-  PD_WHEN_PATH,
+  PD_WHEN_PATH,     /* path following: chosen, or plain control's fallback on a scene with damage */
+  PD_WHEN_PATH_RUN, /* path following chosen (-pd_control arclength or auto) */
   PD_WHEN_PATH_LINEAR,
   PD_WHEN_AUGMENTED,
   PD_WHEN_UNLOAD,

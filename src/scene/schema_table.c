@@ -297,6 +297,12 @@ const PDOptionSpec PDOptionSchema[] = {
      .range = "(0, inf)",
      .when  = PD_WHEN_IMPLICIT,
      .help  = "Smallest load-factor increment; the run stops below it"},
+    {.name = "-pd_control_fallback",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_FALLBACK,
+     .help = "On a scene with damage, where load or displacement control finds no equilibrium at its smallest increment "
+             "(-pd_dlambda_min), go on with path following (-pd_arclength_type) from the last accepted step; false: stop there"},
     {.name = "-pd_predictor",
      .type = PD_OPTION_BOOL,
      .def  = "true",
@@ -458,7 +464,7 @@ const PDOptionSpec PDOptionSchema[] = {
     {.name     = "-pd_restart",
      .type     = PD_OPTION_STRING,
      .def_note = "none",
-     .when     = PD_WHEN_PATH,
+     .when     = PD_WHEN_PATH_RUN,
      .help     = "Go on from this checkpoint.h5 of the same scene (any rank count; other options may change, e.g. -pd_stop_fraction)"},
     /* explicit path */
     {.name  = "-pd_ramp_time",
@@ -467,7 +473,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .def   = "0",
      .range = "[0, inf)",
      .when  = PD_WHEN_EXPLICIT,
-     .help  = "Duration of the fifth-order smoothstep ramp of the load factor; 0: 20,000 time steps"},
+     .help  = "Duration of the fifth-order smoothstep ramp of the load factor; 0: 20,000 time steps at the default -pd_dt_safety (18,000 "
+              "stable steps; 20,000 unit steps under -pd_adr)"},
     {.name  = "-pd_hold_time",
      .type  = PD_OPTION_REAL,
      .unit  = "s",

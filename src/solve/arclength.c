@@ -30,6 +30,8 @@ typedef struct {
 } Reversal;
 
 #define NSTATE 16 /* scalars a checkpoint keeps of the driver (state_names below) */
+/* IMPL-EX tolerance of the fallback: the value docs/arclength.md measured (peak within 0.5 % on the 2D beam) */
+#define PD_FALLBACK_IMPLEX 0.01
 
 typedef struct {
   PDModel       *m;
@@ -48,6 +50,7 @@ typedef struct {
   unsigned char *branch;     /* per-bond branches, frozen once Newton cycles at history kinks */
   /* IMPL-EX (-pd_arclength_implex): bond histories at the last two accepted steps, the one a step uses */
   PetscReal  *kx_n, *kx_prev;
+  PetscReal   implex;   /* the damage error per step IMPL-EX adapts to (-pd_arclength_implex, or the fallback's) */
   PetscReal   len_prev; /* the last accepted step's length in the units of the next one */
   PetscInt    rejects;  /* IMPL-EX steps made again shorter since the last accepted one */
   Reversal    rev;      /* load reversal; while unloading (phase 1) the cmod gauge closes */
@@ -515,7 +518,64 @@ static PetscErrorCode ReadCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
+/* Plain control found no equilibrium past its last accepted step (PDStaticRun): path following goes on
+   from that step with the scene's constraint. The first arc length is the last step's in the constraint's
+   units; the reference that bounds growth and cuts is that of a full increment (-pd_dlambda_max), scaled
+   from it, since plain control has cut its last increments short by then. The spherical constraint's
+   scaling comes from the same step (there is no elastic first step to take it from). */
+static PetscErrorCode TakeOver(Arc *a, PDPath *p, const PDPath *from, PetscReal dlam_last, PDRecord *rec) {
+  PDModel       *m  = a->m;
+  const PDScene *sc = m->scene;
+  PetscReal      dunorm;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(from->u_n, p->u_n));
+  PetscCall(VecCopy(from->f_n, p->f_n));
+  PetscCall(VecCopy(from->du, a->dprev));
+  p->lambda_n  = from->lambda_n;
+  p->w_ext     = from->w_ext;
+  p->step      = from->step;
+  m->lambda    = p->lambda_n;
+  a->have_prev = PETSC_TRUE;
+  for (PetscInt k = 0; k < rec->nrows; k++)
+    if (PetscAbsReal(rec->rows[k].load) > a->peak) {
+      a->peak      = PetscAbsReal(rec->rows[k].load);
+      a->peak_sign = rec->rows[k].load < 0 ? -1 : 1;
+    }
+  PetscCall(VecNorm(from->du, NORM_2, &dunorm));
+  a->psi2 = dunorm * dunorm / (dlam_last * dlam_last);
+  a->type = sc->arc_type;
+  PetscCall(VecWAXPY(a->w, -1, from->du, from->u_n)); /* u at the step before */
+  PetscCall(VecCopy(a->w, a->u));
+  PetscCall(StepLength(a, p, a->u, p->lambda_n - dlam_last, &rec->rows[rec->nrows - 1],
+                       rec->nrows > 1 ? rec->rows[rec->nrows - 2].dissipated : 0, a->type, &a->dl));
+  PetscCheck(a->dl > 0, m->lat->comm, PETSC_ERR_NOT_CONVERGED,
+             "path following cannot start from step %" PetscInt_FMT ": its last step measures %g in the %s constraint", p->step,
+             (double)a->dl, PDArcTypes[a->type]);
+  a->dl0 = a->dl * PetscMax(1, sc->dlambda_max / dlam_last);
+  if (sc->arc_initial > 0) a->dl = a->dl0 = sc->arc_initial;
+  PetscCall(PetscPrintf(m->lat->comm, "  path following (%s) from step %" PetscInt_FMT ", load factor %g: %s\n", PDArcTypes[a->type],
+                        p->step, (double)p->lambda_n, rec->fallback_why));
+  PetscFunctionReturn(0);
+}
+
+/* IMPL-EX from the committed histories (kx_n, and kx_prev unless a checkpoint gave it): no limiter, every
+   threshold is open, as on the explicit path. A restart has the history a step earlier from its
+   checkpoint (one written without IMPL-EX: the same history, no extrapolation). */
+static PetscErrorCode StartImplex(Arc *a, PetscReal tol, PetscBool have_prev) {
+  PDModel *m = a->m;
+
+  PetscFunctionBeginUser;
+  a->implex = tol;
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+    m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
+    a->kx_n[e]                  = m->kappa[e];
+    if (!have_prev) a->kx_prev[e] = m->kappa[e];
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscReal dlam_last) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   Arc            a;
@@ -555,16 +615,11 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   a.augmented =
       sc->arc_augmented && !a.direct && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
   if (a.augmented) PetscCall(PDAugmentedCreate(a.J, a.ksp, &a.aug));
-  if (sc->restart[0]) PetscCall(ReadCheckpoint(&a, &path, rec));
-  if (a.kx_n) {
-    /* no limiter: every threshold is open, as on the explicit path. A restart has the history a step
-       earlier from its checkpoint (one written without IMPL-EX: the same history, no extrapolation) */
-    for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
-      m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
-      a.kx_n[e]                   = m->kappa[e];
-      if (!sc->restart[0]) a.kx_prev[e] = m->kappa[e];
-    }
-  }
+  if (sc->restart[0])
+    PetscCall(ReadCheckpoint(&a, &path, rec));
+  else if (from)
+    PetscCall(TakeOver(&a, &path, from, dlam_last, rec));
+  if (a.kx_n) PetscCall(StartImplex(&a, sc->arc_implex, sc->restart[0] ? PETSC_TRUE : PETSC_FALSE));
   PackState(&a, &path);
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
@@ -587,6 +642,20 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       if (a.kx_n) PetscCall(PetscArraycpy(m->kappa, a.kx_n, m->bonds->nbonds));
       PetscCall(PDStopInsideStep(rec, &stop));
       if (stop) break;
+      if (from && !a.kx_n && a.type != ARC_LOAD && a.dl * 0.5 < 1e-6 * a.dl0) {
+        /* the fallback goes on: where Newton cannot settle which softened bonds load and which unload (a
+           whole ligament at its peak stress), IMPL-EX needs no such decision */
+        PetscCall(PetscMalloc1(m->bonds->nbonds, &a.kx_n));
+        PetscCall(PetscMalloc1(m->bonds->nbonds, &a.kx_prev));
+        PetscCall(StartImplex(&a, PD_FALLBACK_IMPLEX, PETSC_FALSE));
+        a.dl                      = a.dl0;
+        a.len_prev                = 0;
+        rec->fallback_implex_step = path.step;
+        PetscCall(PetscPrintf(
+            comm, "  IMPL-EX (damage error %g per step) from step %" PetscInt_FMT ": implicit path following found no equilibrium (%s)\n",
+            (double)a.implex, path.step, a.why));
+        continue;
+      }
       if (a.type == ARC_LOAD ? a.dlam * 0.5 < sc->dlambda_min : a.dl * 0.5 < 1e-6 * a.dl0) {
         rec->converged = PETSC_FALSE;
         PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g: %s %g at its floor (%s)",
@@ -609,8 +678,8 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       /* a shorter step helps where damage runs ahead of the extrapolation within the step; where the real
          history of the last step left its state out of balance (the error stays as the step shrinks: the
          unnotched D = 200 mm beam at 0.064 for ten halvings) it does not, and the step is taken */
-      if (a.type != ARC_LOAD && implex_err > 2 * sc->arc_implex && a.rejects < 3 && a.dl * 0.5 >= 1e-6 * a.dl0) {
-        a.dl *= PetscMax(0.25, PetscSqrtReal(sc->arc_implex / implex_err));
+      if (a.type != ARC_LOAD && implex_err > 2 * a.implex && a.rejects < 3 && a.dl * 0.5 >= 1e-6 * a.dl0) {
+        a.dl *= PetscMax(0.25, PetscSqrtReal(a.implex / implex_err));
         a.hold = sc->arc_hold;
         a.rejects++;
         continue;
@@ -646,7 +715,7 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
       PetscReal       f   = PetscSqrtReal((PetscReal)sc->arc_target_its / PetscMax(1, a.its));
       /* IMPL-EX aims at its extrapolation error instead, which is second order in the step where histories
          change smoothly */
-      if (a.kx_n) f = implex_err > 0 ? PetscSqrtReal(sc->arc_implex / implex_err) : 2;
+      if (a.kx_n) f = implex_err > 0 ? PetscSqrtReal(a.implex / implex_err) : 2;
       if (a.hold > 0) { /* after a cut: no growth for -pd_arclength_hold steps */
         f = PetscMin(f, 1);
         a.hold--;
@@ -695,10 +764,12 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   {
     KSPType kt;
     PCType  pt;
+    char    plain[sizeof rec->solver];
     PetscCall(KSPGetType(a.ksp, &kt));
     PetscCall(PCGetType(pc, &pt));
-    PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "arclength(%s, %s)/%s/%s", PDArcTypes[sc->arc_type],
-                            a.augmented ? "augmented" : "bordering", kt, pt));
+    PetscCall(PetscStrncpy(plain, rec->solver, sizeof plain)); /* the solver of plain control before a take-over */
+    PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "%s%sarclength(%s, %s)/%s/%s", from ? plain : "", from ? ", then " : "",
+                            PDArcTypes[sc->arc_type], a.augmented ? "augmented" : "bordering", kt, pt));
   }
   if (a.augmented) PetscCall(PDAugmentedDestroy(&a.aug));
   PetscCall(KSPDestroy(&a.ksp));
@@ -712,5 +783,17 @@ PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
   PetscCall(PetscFree(a.branch));
   PetscCall(PetscFree(a.kx_n));
   PetscCall(PetscFree(a.kx_prev));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDArcLengthRun(PDModel *m, PDRecord *rec) {
+  PetscFunctionBeginUser;
+  PetscCall(Run(m, rec, NULL, 0));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDArcLengthTakeOver(PDModel *m, PDRecord *rec, const PDPath *from, PetscReal dlam_last) {
+  PetscFunctionBeginUser;
+  PetscCall(Run(m, rec, from, dlam_last));
   PetscFunctionReturn(0);
 }

@@ -82,45 +82,44 @@ static PetscErrorCode Eq46TimeStep(PDModel *m, PetscReal *dt) {
    Gregoire lattices; power iteration x <- M^-1 K x from a start fixed by the global dof ids (the same on
    any rank count) gives the Rayleigh quotient x^T K x / x^T M x, a lower bound that rises towards
    lambda_max (docs/explicit.md for how close it gets, and the margin the default safety leaves). */
-static PetscErrorCode LargestEigenvalue(PDExplicit *c) {
-  PDModel       *m = c->m;
+static PetscErrorCode LargestEigenvalue(PDModel *m, Vec mass, PetscReal *eig_est, PetscReal *eig_bound) {
   const PetscInt n = m->bs * m->lat->nowned, its = m->scene->dt_power_its;
   Vec            fr, x, y, w;
   PetscScalar   *xx, xkx, xmx;
 
   PetscFunctionBeginUser;
-  PetscCall(VecDuplicate(c->mass, &fr));
-  PetscCall(VecDuplicate(c->mass, &x));
-  PetscCall(VecDuplicate(c->mass, &y));
-  PetscCall(VecDuplicate(c->mass, &w));
+  PetscCall(VecDuplicate(mass, &fr));
+  PetscCall(VecDuplicate(mass, &x));
+  PetscCall(VecDuplicate(mass, &y));
+  PetscCall(VecDuplicate(mass, &w));
   PetscCall(VecCopy(m->fixed, fr)); /* 1 on free dofs, 0 on constrained ones */
   PetscCall(VecScale(fr, -1));
   PetscCall(VecShift(fr, 1));
   PetscCall(PDModelStiffnessRowBound(m, y));
-  PetscCall(VecPointwiseDivide(y, y, c->mass));
+  PetscCall(VecPointwiseDivide(y, y, mass));
   PetscCall(VecPointwiseMult(y, y, fr));
-  PetscCall(VecMax(y, NULL, &c->eig_bound));
+  PetscCall(VecMax(y, NULL, eig_bound));
   PetscCall(VecGetArray(x, &xx));
   for (PetscInt k = 0; k < n; k++) xx[k] = PDUnitFromId(m->bs * (PetscInt64)m->lat->gid_start + k);
   PetscCall(VecRestoreArray(x, &xx));
   PetscCall(VecPointwiseMult(x, x, fr));
-  c->eig_est = 0;
+  *eig_est = 0;
   for (PetscInt it = 0; it < its; it++) {
     PetscCall(PDModelElasticApply(m, x, y));
     PetscCall(VecPointwiseMult(y, y, fr));
-    PetscCall(VecPointwiseMult(w, x, c->mass));
+    PetscCall(VecPointwiseMult(w, x, mass));
     PetscCall(VecDot(x, y, &xkx));
     PetscCall(VecDot(x, w, &xmx));
     if (PetscRealPart(xmx) == 0) break; /* no free dof */
-    c->eig_est = PetscMax(c->eig_est, PetscRealPart(xkx) / PetscRealPart(xmx));
-    PetscCall(VecPointwiseDivide(x, y, c->mass));
+    *eig_est = PetscMax(*eig_est, PetscRealPart(xkx) / PetscRealPart(xmx));
+    PetscCall(VecPointwiseDivide(x, y, mass));
     PetscCall(VecNormalize(x, NULL));
   }
   PetscCall(VecDestroy(&fr));
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&y));
   PetscCall(VecDestroy(&w));
-  PetscCheck(c->eig_est > 0, m->lat->comm, PETSC_ERR_USER_INPUT, "Explicit path: no free degree of freedom has stiffness");
+  PetscCheck(*eig_est > 0, m->lat->comm, PETSC_ERR_USER_INPUT, "Explicit path: no free degree of freedom has stiffness");
   PetscFunctionReturn(0);
 }
 
@@ -336,10 +335,59 @@ static PetscErrorCode PostStep(TS ts) {
   PetscFunctionReturn(0);
 }
 
+/* Nodal masses: rho V per dof, or dynamic relaxation's fictitious ones. */
+static PetscErrorCode Mass(PDModel *m, Vec mass) {
+  PetscScalar *ms;
+
+  PetscFunctionBeginUser;
+  if (m->scene->adr) {
+    PetscCall(AdrMass(m, mass));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecGetArray(mass, &ms));
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) ms[k] = m->scene->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
+  PetscCall(VecRestoreArray(mass, &ms));
+  PetscFunctionReturn(0);
+}
+
+/* Ramp and hold durations and the step count for the time step dt. The default ramp is a duration, 18,000
+   stable steps (20,000 steps at the default safety 0.9): a smaller safety factor takes more steps over the
+   same loading, not a faster load. Dynamic relaxation counts its unit steps. */
+static void Durations(const PDScene *sc, PetscReal dt, PetscReal dt_stable, PetscReal *t_ramp, PetscReal *t_end, PetscReal *nsteps) {
+  *t_ramp = sc->ramp_time > 0 ? sc->ramp_time : sc->adr ? 20000 : 18000 * dt_stable;
+  /* a failure search trial holds its load, by default as long as the ramp took */
+  *t_end  = *t_ramp + (sc->failure_search && sc->hold_time == 0 ? *t_ramp : sc->hold_time);
+  *nsteps = PetscCeilReal(*t_end / dt);
+}
+
+/* The stable time step and the step count, before anything is written (in the record, for the run and
+   its summary): a ramp, hold or safety factor whose step count no integer holds is bad input, not a
+   failure found once the output exists. */
+PetscErrorCode PDExplicitPlan(PDModel *m, PDRecord *rec) {
+  const PDScene *sc = m->scene;
+  Vec            mass;
+  PetscReal      t_ramp, t_end, nsteps;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(m->f_ref, &mass));
+  PetscCall(Mass(m, mass));
+  PetscCall(LargestEigenvalue(m, mass, &rec->eig_est, &rec->eig_bound));
+  PetscCall(VecDestroy(&mass));
+  PetscCall(Eq46TimeStep(m, &rec->dt_eq46));
+  rec->dt_stable = 2 / PetscSqrtReal(rec->eig_est);
+  rec->dt        = sc->adr ? 1 : sc->dt_safety * rec->dt_stable; /* dynamic relaxation counts time in steps */
+  Durations(sc, rec->dt, rec->dt_stable, &t_ramp, &t_end, &nsteps);
+  PetscCheck(nsteps < (PetscReal)PETSC_MAX_INT - 2, m->lat->comm, PETSC_ERR_USER_INPUT,
+             "-pd_ramp_time %g s, -pd_hold_time %g s and -pd_dt_safety %g need %g time steps of %g %s: more than an integer counts",
+             (double)t_ramp, (double)(t_end - t_ramp), (double)sc->dt_safety, (double)nsteps, (double)rec->dt, sc->adr ? "steps" : "s");
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   PetscInt       n    = m->bs * m->lat->nowned, rstart;
+  PetscReal      nsteps;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(c, sizeof *c));
@@ -352,29 +400,19 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   PetscCall(VecDuplicate(m->f_ref, &c->f_int));
   PetscCall(VecDuplicate(m->f_ref, &c->u_prev));
   PetscCall(VecDuplicate(m->f_ref, &c->f_ext));
+  PetscCall(Mass(m, c->mass));
   if (sc->adr) {
-    PetscCall(AdrMass(m, c->mass));
     PetscCall(VecDuplicate(m->f_ref, &c->adr_r));
     PetscCall(VecDuplicate(m->f_ref, &c->adr_u));
-  } else {
-    PetscScalar *ms;
-    PetscCall(VecGetArray(c->mass, &ms));
-    for (PetscInt k = 0; k < n; k++) ms[k] = sc->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
-    PetscCall(VecRestoreArray(c->mass, &ms));
   }
-  PetscCall(LargestEigenvalue(c));
-  PetscCall(Eq46TimeStep(m, &rec->dt_eq46));
-  c->dt_stable = 2 / PetscSqrtReal(c->eig_est);
-  c->dt        = sc->adr ? 1 : sc->dt_safety * c->dt_stable; /* dynamic relaxation counts time in steps */
-  c->t_ramp    = sc->ramp_time > 0 ? sc->ramp_time : 20000 * c->dt;
-  /* a failure search trial holds its load, by default as long as the ramp took */
-  c->t_end       = c->t_ramp + (sc->failure_search && sc->hold_time == 0 ? c->t_ramp : sc->hold_time);
-  c->nsteps      = (PetscInt)PetscCeilReal(c->t_end / c->dt);
-  c->stride      = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, c->nsteps / 400);
-  rec->eig_est   = c->eig_est;
-  rec->eig_bound = c->eig_bound;
-  rec->dt_stable = c->dt_stable;
-  rec->dt        = c->dt;
+  if (rec->eig_est == 0) PetscCall(PDExplicitPlan(m, rec));
+  c->eig_est   = rec->eig_est;
+  c->eig_bound = rec->eig_bound;
+  c->dt_stable = rec->dt_stable;
+  c->dt        = rec->dt;
+  Durations(sc, c->dt, c->dt_stable, &c->t_ramp, &c->t_end, &nsteps);
+  c->nsteps = (PetscInt)nsteps;
+  c->stride = sc->out_stride > 0 ? sc->out_stride : PetscMax(1, c->nsteps / 400);
   PetscCall(PetscPrintf(comm,
                         "  explicit: largest eigenvalue of M^-1 K %.4g 1/s^2 (%" PetscInt_FMT
                         " power iterations), Gershgorin bound %.4g 1/s^2; stable step %.4g %s (Gershgorin %.4g %s, Eq. 4.6 %.4g s)\n",

@@ -14,3 +14,6 @@ typedef struct {
 PetscErrorCode PDPathCreate(PDModel *, PDPath *);
 PetscErrorCode PDPathAccept(PDModel *, PDRecord *, PDPath *, Vec u, PetscReal lambda, PetscInt its, PetscInt lits, PDCurveRow *);
 PetscErrorCode PDPathDestroy(PDPath *);
+/* Path following from the accepted state of plain control (PDStaticRun), whose last increment was
+   dlam_last: its fallback where it finds no equilibrium. */
+PetscErrorCode PDArcLengthTakeOver(PDModel *, PDRecord *, const PDPath *, PetscReal dlam_last);

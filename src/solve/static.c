@@ -187,8 +187,9 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
   Vec            u, r;
   PDPath         path;
-  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0;
-  PetscInt       step = 0;
+  PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0, peak = 0;
+  PetscInt       step     = 0;
+  PetscBool      takeover = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
@@ -229,6 +230,17 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       if (stop) break;
       PetscCall(SwitchFromCG(snes, &retry));
       if (retry) continue; /* the same increment again, now with GMRES */
+      if (!m->linear && dl * 0.5 < sc->dlambda_min && m->softening && sc->control_fallback && path.step > 0) {
+        /* past a limit point, or where bonds snap, plain control has no equilibrium to find: path
+           following goes on from the last accepted step */
+        takeover = PETSC_TRUE;
+        PetscCall(PetscSNPrintf(rec->fallback_why, sizeof rec->fallback_why,
+                                "%s control found no equilibrium past load factor %g (%s; increment %g at its floor)",
+                                sc->control == PD_CONTROL_FORCE ? "load" : "displacement", (double)lambda_n, res.why, (double)dl));
+        rec->fallback_step   = path.step;
+        rec->fallback_lambda = lambda_n;
+        break;
+      }
       if (m->linear || dl * 0.5 < sc->dlambda_min) {
         rec->converged = PETSC_FALSE;
         PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "diverged at load factor %g (%s); increment %g at its floor", (double)lam,
@@ -244,9 +256,15 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     lambda_n                = lam;
     step                    = path.step;
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, res.max_events);
+    peak = PetscMax(peak, PetscAbsReal(row.load));
     if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
       stop = PETSC_TRUE;
       PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
+    } else if (m->softening && sc->stop_fraction > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak) {
+      /* the criterion of path following, which this path may hand over to */
+      stop = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
+                              (double)sc->stop_fraction, (double)peak));
     }
     if (lambda_n >= sc->lambda_max * (1 - 1e-12)) stop = PETSC_TRUE;
     if (!stop) PetscCall(PDStopOnSignal(comm, rec, &stop));
@@ -283,6 +301,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(MatDestroy(&J));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&r));
+  if (takeover) PetscCall(PDArcLengthTakeOver(m, rec, &path, dl_prev));
   PetscCall(PDPathDestroy(&path));
   PetscFunctionReturn(0);
 }
