@@ -75,7 +75,8 @@ def report(res):
              "are the runs' own.", "",
              "| case | status | steps | path following from step | IMPL-EX from step | Newton | KSP | peak (N) | final / peak | "
              "dissipated (J) | CPU (s) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
-    for name, c in res["cases"].items():
+    for name in [c[0] for c in CASES]:
+        c = res["cases"][name]
         lines.append("| %s | %s | %d | %s | %s | %d | %d | %.1f | %.3f | %.4f | %.1f |" % (
             c["what"], c["status"].split(":")[0], c["steps"], c["handover_step"] or "-", c["implex_from_step"] or "-", c["newton_its"],
             c["ksp_its"], c["peak_load_N"], c["final_load_N"] / c["peak_load_N"], c["dissipated_J"], c["cpu_s"]))
