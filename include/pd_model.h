@@ -19,7 +19,8 @@ typedef struct {
   PetscReal       *ka, *kb;     /* per-bond tangent scalars; NULL while the tangent is constant */
   PetscReal       *kp;          /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
   PDLaw            law[PD_MAX_MATERIALS];
-  PetscBool        softening; /* some bond law softens or breaks: bonds carry history */
+  PetscBool        softening;      /* some bond law softens or breaks: bonds carry history */
+  PetscBool        gamg_after_icc; /* ICC(0) failed on the tangent: algebraic multigrid from then on */
   /* per-bond history, allocated only when softening */
   PetscReal     *kappa;                         /* largest stretch reached, committed at accepted steps */
   unsigned char *level;                         /* PDBondLevel the limiter allows the bond to reach */

@@ -12,7 +12,7 @@
 #define PD_GAMG_MIN_NODES 10000
 
 PetscBool PDModelDefaultsToGAMG(const PDModel *m) {
-  return (m->bs == 2 || (!m->linear && m->lat->nglobal >= PD_GAMG_MIN_NODES)) ? PETSC_TRUE : PETSC_FALSE;
+  return (m->bs == 2 || m->gamg_after_icc || (!m->linear && m->lat->nglobal >= PD_GAMG_MIN_NODES)) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
