@@ -44,14 +44,19 @@ def load_results(path):
     return json.load(open(path)) if os.path.exists(path) else {}
 
 
-def store_result(path, key, value):
-    """Adds one run to a results file, merged into what is on disk, so that several studies can write the
-    same file side by side; the file is replaced whole, never left half written. Returns the merged results."""
-    res = load_results(path)
-    res[key] = value
+def save_results(path, res):
+    """Writes a results file whole (temporary name, then rename): never left half written."""
     with open(path + ".tmp", "w") as f:
         json.dump(res, f, indent=1, sort_keys=True)
     os.replace(path + ".tmp", path)
+
+
+def store_result(path, key, value):
+    """Adds one run to a results file, merged into what is on disk, so that several studies can write the
+    same file side by side. Returns the merged results."""
+    res = load_results(path)
+    res[key] = value
+    save_results(path, res)
     return res
 
 

@@ -13,7 +13,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, run_timed
+from common import EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results
 
 JSON = os.path.join(RESULTS_DIR, "hard_cases.json")
 
@@ -60,9 +60,7 @@ def main():
             float(rows[-1]["dissipated_J"]), "handover_step": fb["step"] if fb else 0, "implex_from_step": fb["implex_from_step"] if fb else 0,
             "x": xkey, "curve": [[float(r[xkey]), float(r["load_N"])] for r in rows]}
         print(name, s["status"], "%.1f s" % cpu, flush=True)
-    with open(JSON + ".tmp", "w") as f:
-        json.dump(res, f, indent=1, sort_keys=True)
-    os.replace(JSON + ".tmp", JSON)
+    save_results(JSON, res)
     report(res)
 
 
