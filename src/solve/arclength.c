@@ -30,7 +30,7 @@ typedef struct {
 } Reversal;
 
 #define NSTATE 16 /* scalars a checkpoint keeps of the driver (state_names below) */
-/* IMPL-EX tolerance of the fallback: the value docs/arclength.md measured (peak within 0.5 % on the 2D beam) */
+/* IMPL-EX tolerance of the fallback: the value docs/arclength.md measured on the 2D half-notched beam */
 #define PD_FALLBACK_IMPLEX 0.01
 
 typedef struct {
