@@ -735,16 +735,9 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     }
     if (sc->unload_at > 0 && a.type != ARC_LOAD) PetscCall(LoadReversal(&a, rec, &row, a.peak, a.peak_sign, len, a.dl0, &a.dl));
     PackState(&a, &path);
-    if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
-      stop = PETSC_TRUE;
-      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
-    } else if (sc->stop_fraction > 0 && a.peak > 0 && PetscAbsReal(row.load) < sc->stop_fraction * a.peak && a.rev.phase != 1 &&
-               a.rev.phase != 2) {
-      stop = PETSC_TRUE;
-      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
-                              (double)sc->stop_fraction, (double)a.peak));
-    } else if (path.lambda_n >= sc->lambda_max * (1 - 1e-12))
-      stop = PETSC_TRUE;
+    /* no separation while a load reversal unloads and reloads */
+    PetscCall(PDPathStopCriteria(sc, rec, &row, a.peak, a.rev.phase != 1 && a.rev.phase != 2 ? PETSC_TRUE : PETSC_FALSE, &stop));
+    if (!stop && path.lambda_n >= sc->lambda_max * (1 - 1e-12)) stop = PETSC_TRUE;
     if (!stop) PetscCall(PDStopOnSignal(comm, rec, &stop));
     PetscCall(PDProgress(comm, sc, &row, stop));
     if (stop || (sc->fields_every > 0 && path.step % sc->fields_every == 0)) PetscCall(PDFieldsWrite(m, rec, path.step, path.u_n));

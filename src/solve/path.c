@@ -69,3 +69,18 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   rec->steps = p->step;
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode PDPathStopCriteria(const PDScene *sc, PDRecord *rec, const PDCurveRow *row, PetscReal peak, PetscBool judge_separation,
+                                  PetscBool *stop) {
+  PetscFunctionBeginUser;
+  *stop = PETSC_FALSE;
+  if (sc->stop_cmod > 0 && row->cmod >= sc->stop_cmod) {
+    *stop = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
+  } else if (judge_separation && sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row->load) < sc->stop_fraction * peak) {
+    *stop = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row->load,
+                            (double)sc->stop_fraction, (double)peak));
+  }
+  PetscFunctionReturn(0);
+}

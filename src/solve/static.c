@@ -298,15 +298,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     step                    = path.step;
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, res.max_events);
     peak                    = PetscMax(peak, PetscAbsReal(row.load));
-    if (sc->stop_cmod > 0 && row.cmod >= sc->stop_cmod) {
-      stop = PETSC_TRUE;
-      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
-    } else if (m->softening && sc->stop_fraction > 0 && PetscAbsReal(row.load) < sc->stop_fraction * peak) {
-      /* the criterion of path following, which this path may hand over to */
-      stop = PETSC_TRUE;
-      PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "separated: load %.4g N below %g of the peak %.4g N", (double)row.load,
-                              (double)sc->stop_fraction, (double)peak));
-    }
+    /* separation, the criterion of path following, which this path may hand over to: judged where bonds soften */
+    PetscCall(PDPathStopCriteria(sc, rec, &row, peak, m->softening, &stop));
     if (lambda_n >= sc->lambda_max * (1 - 1e-12)) stop = PETSC_TRUE;
     if (!stop) PetscCall(PDStopOnSignal(comm, rec, &stop));
     PetscCall(PDProgress(comm, sc, &row, stop));
