@@ -104,8 +104,8 @@ def snapback():
           % (100 * back / c[k]["disp_m"]))
     common("snap-back", r)
     # plain displacement control cannot follow the snap-back: measured, it jumps from the limit point to the
-    # branch below in one step (the limiter settles the jump in stages), then goes on until Newton fails
-    # near separation (status diverged, non-zero exit)
+    # branch below in one step (the limiter settles the jump in stages), then goes on along that branch
+    # (measured: to separation, with a lower peak than path following's)
     d = run(UN2D, "-pd_control", "displacement", expect_ok=False)
     dc = d.curve
     kp = max(range(len(dc)), key=lambda i: dc[i]["load_N"])
