@@ -10,6 +10,8 @@ typedef struct {
   /* energy (J): work of the external forces and reactions, strain energy in the bonds, dissipated by
      damage, kinetic and removed by damping (the last two in explicit mode) */
   PetscReal external, stored, dissipated, kinetic, damped;
+  PetscInt  yielded;      /* bar segments yielded or broken */
+  PetscReal steel_stress; /* largest |stress| in a bar segment (Pa) */
 } PDCurveRow;
 
 typedef struct {

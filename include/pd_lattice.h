@@ -40,6 +40,9 @@ typedef struct {
   PetscInt  *stencil;   /* [4*nstencil] di, dj, dk and n2 = di^2 + dj^2 + dk^2, lexicographic in (di, dj, dk) */
 } PDLattice;
 
+/* The material of a bond without concrete (a bar's segment across a notch): elastic, coefficient 0. */
+#define PD_MATERIAL_NONE PD_MAX_MATERIALS
+
 /* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
    A bond between two ranks is held by both; each adds only to its own rows. */
 typedef struct {
@@ -54,6 +57,13 @@ typedef struct {
   PetscInt   ncut;                   /* bonds removed by notches (global) */
   PetscReal  lambda_min, lambda_max; /* surface-correction range (global) */
   PetscReal *lambda;                 /* [nbonds] surface-correction factor, kept only for per-bond critical stretches */
+  /* steel bar segments (bars.c): a bond between consecutive nodes of a bar's line carries one beside its
+     concrete part; a pair a notch cuts is kept for its segment with no concrete (coef 0) */
+  PetscInt   nseg, nseg_global;
+  PetscInt  *seg;      /* [nbonds] segment of the bond, or -1; NULL without bars */
+  PetscInt  *seg_bond; /* [nseg] its bond */
+  PetscInt  *seg_bar;  /* [nseg] its bar */
+  PetscReal *seg_coef; /* [nseg] axial stiffness E A_s (N per unit stretch) */
 } PDBonds;
 
 PetscErrorCode PDLatticeCreate(MPI_Comm, const PDScene *, PDLattice *);
@@ -64,8 +74,15 @@ PetscInt PDLatticeLocalIndex(const PDLattice *, PetscInt gid);
 /* Lattice indices (i, j, k) of the node with global id gid (k = 0 in 2D). */
 void PDLatticeNodeIndices(const PDLattice *, PetscInt gid, PetscInt ijk[3]);
 /* Integer lattice offset of node l from node k, and its n2. */
-PetscInt       PDLatticeOffset(const PDLattice *, PetscInt k, PetscInt l, PetscInt d[3]);
-void           PDLatticeInterpolation(const PDLattice *, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n);
+PetscInt PDLatticeOffset(const PDLattice *, PetscInt k, PetscInt l, PetscInt d[3]);
+void     PDLatticeInterpolation(const PDLattice *, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n);
+/* The bar whose line holds the pair of nodes (global ids) as consecutive nodes, or -1. */
+PetscInt       PDBarOfPair(const PDScene *, const PDLattice *, PetscInt gi, PetscInt gj);
+PetscErrorCode PDBondsSetUpBars(const PDScene *, const PDLattice *, PDBonds *);
+/* A bond's elastic axial stiffness (N per unit stretch): its concrete part and its bar segment's. */
+static inline PetscReal PDBondStiffness(const PDBonds *bd, PetscInt e) {
+  return bd->coef[e] + (bd->seg && bd->seg[e] >= 0 ? bd->seg_coef[bd->seg[e]] : 0);
+}
 PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PetscBool keep_lambda, PDBonds *);
 /* Global id of a bond (same on every rank): lower node id times N plus the higher one. */
 PetscInt64 PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);

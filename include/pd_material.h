@@ -47,3 +47,24 @@ PetscReal PDLawWorkOfFracture(const PDLaw *);
 PetscReal PDLawNextThreshold(const PDLaw *, const PDLawBond *, PetscInt level);
 /* The level consistent with a history kappa: the number of thresholds at or below it. */
 PetscInt PDLawLevelOf(const PDLaw *, const PDLawBond *, PetscReal kappa);
+
+/* Steel of a bar segment (docs/reinforcement.md), per unit axial stiffness E A: force g = E A (s - sp)
+   with yield surface |s - sp - H sp| <= s_y (linear kinematic hardening, H = h/(1 - h) for the post-yield
+   tangent h E), elastic unloading, and rupture for good once the stretch reaches s_u. The state is the
+   plastic stretch sp and the rupture flag, committed at accepted steps; the response is a pure function
+   of the stretch and the committed state. */
+typedef struct {
+  PetscReal sy; /* yield stretch f_y/E */
+  PetscReal h;  /* post-yield tangent over E */
+  PetscReal su; /* rupture stretch; PETSC_MAX_REAL: none */
+} PDSteel;
+
+void PDSteelSetUp(const PDBar *, PDSteel *);
+/* Force over E A at stretch s from the committed state (sp_n, broken_n), its slope (the consistent
+   tangent over E A: 1 elastic, h plastic, 0 broken) and the state it leaves (sp, broken). */
+void PDSteelResponse(const PDSteel *, PetscReal s, PetscReal sp_n, PetscBool broken_n, PetscReal *g, PetscReal *gp, PetscReal *sp,
+                     PetscBool *broken);
+/* Energy per unit E A and unit length at stretch s and plastic stretch sp: stored (elastic and hardening),
+   and dissipated by plastic flow, s_y |sp| (exact for paths that do not reverse plastic flow). */
+PetscReal PDSteelStored(const PDSteel *, PetscReal s, PetscReal sp);
+PetscReal PDSteelDissipated(const PDSteel *, PetscReal sp);

@@ -8,19 +8,20 @@ typedef struct {
   const PDScene   *scene;
   const PDLattice *lat;
   const PDBonds   *bonds;
-  PetscInt         bs;          /* dofs per node: 2 or 3 */
-  PetscBool        linear;      /* elastic law with small kinematics: K u = f, one solve per step */
-  PetscReal        lambda;      /* current load factor */
-  PetscReal        bc_scale;    /* diagonal given to constrained dofs, of the order of a bond stiffness */
-  PetscReal        force_scale; /* size of the load at lambda = 1 (N), for absolute tolerances */
-  Vec              u_local;     /* ghosted work copy of the displacement */
-  Vec              f_local;     /* ghosted work vector for internal forces */
-  Vec              x_local;     /* ghosted work vector for tangent products (created on first use) */
-  PetscReal       *ka, *kb;     /* per-bond tangent scalars; NULL while the tangent is constant */
-  PetscReal       *kp;          /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
-  PDLaw            law[PD_MAX_MATERIALS];
-  PetscBool        softening;      /* some bond law softens or breaks: bonds carry history */
-  PetscBool        gamg_after_icc; /* ICC(0) failed on the tangent: algebraic multigrid from then on */
+  PetscInt         bs;                        /* dofs per node: 2 or 3 */
+  PetscBool        linear;                    /* elastic law with small kinematics: K u = f, one solve per step */
+  PetscReal        lambda;                    /* current load factor */
+  PetscReal        bc_scale;                  /* diagonal given to constrained dofs, of the order of a bond stiffness */
+  PetscReal        force_scale;               /* size of the load at lambda = 1 (N), for absolute tolerances */
+  Vec              u_local;                   /* ghosted work copy of the displacement */
+  Vec              f_local;                   /* ghosted work vector for internal forces */
+  Vec              x_local;                   /* ghosted work vector for tangent products (created on first use) */
+  PetscReal       *ka, *kb;                   /* per-bond tangent scalars; NULL while the tangent is constant */
+  PetscReal       *kp;                        /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
+  PDLaw            law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_NONE */
+  PDSteel          steel[PD_MAX_BARS];        /* the steel of each bar */
+  PetscBool        softening;                 /* some bond law softens or breaks: bonds carry history */
+  PetscBool        gamg_after_icc;            /* ICC(0) failed on the tangent: algebraic multigrid from then on */
   /* per-bond history, allocated only when softening */
   PetscReal     *kappa;                         /* largest stretch reached, committed at accepted steps */
   unsigned char *level;                         /* PDBondLevel the limiter allows the bond to reach */
@@ -30,6 +31,9 @@ typedef struct {
   unsigned char *branch;                        /* path following: per-bond PDBranch frozen for a stage, or NULL */
   PetscInt       limiter_max;                   /* bond events granted per Newton iteration; 0: no cap */
   PetscBool      commit_history;                /* explicit path: every force evaluation raises kappa */
+  PetscReal     *sp_n;                          /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
+  PetscBool     *ruptured_n;                    /* [nseg] the segment has broken (committed) */
+  PetscInt       yielded;                       /* bar segments with plastic stretch, or broken (global, counted once) */
   PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
   PetscInt       softening_bonds;               /* bonds on the softening branch, not broken (global) */
   PetscInt       nregularised, max_regularised; /* free dofs left without stiffness by damage */
@@ -66,7 +70,8 @@ typedef enum {
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
-PetscInt       PDModelEffects(const PDModel *, const char *names[5]);
+#define PD_MAX_EFFECTS 8
+PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
 PetscBool      PDModelDefaultsToGAMG(const PDModel *);
 PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
@@ -90,3 +95,5 @@ PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);
 PetscReal      PDUnitFromId(PetscInt64 id);
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
+/* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars). */
+PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress);

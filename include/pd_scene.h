@@ -9,6 +9,7 @@
 #define PD_MAX_NOTCHES 8
 #define PD_MAX_REGIONS 16
 #define PD_MAX_VOIDS 16
+#define PD_MAX_BARS 16
 #define PD_NAME_LEN 256
 
 typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
@@ -94,6 +95,20 @@ typedef struct {
   PDGeometry where;
 } PDVoid;
 
+/* A straight steel bar along a lattice axis (docs/reinforcement.md). Its line is laid on the nearest line of
+   nodes; every pair of consecutive nodes on it carries a bar segment of axial stiffness E_s A_s and yield
+   force f_y A_s beside the concrete bond of the same pair (perfect bond: the bar shares the nodes). */
+typedef struct {
+  char      option[32];
+  PetscReal line[6];   /* end points, x,y,z each; they differ along exactly one axis */
+  PetscInt  axis;      /* that axis */
+  PetscReal diameter;  /* m */
+  PetscInt  count;     /* identical bars lumped on the line (across a 2D model's thickness) */
+  PetscReal E, fy;     /* Pa */
+  PetscReal hardening; /* post-yield tangent over E (0: perfectly plastic) */
+  PetscReal rupture;   /* strain at which the bar breaks; 0: never */
+} PDBar;
+
 typedef struct {
   char         option[32];
   PDGeometry   where;
@@ -142,11 +157,12 @@ typedef struct {
   PetscReal  lambda_max;        /* end of the load path */
   PetscReal  dlambda_min, dlambda_max;
   PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
-  PetscInt   nmaterials, nnotches, nregions, nvoids;
+  PetscInt   nmaterials, nnotches, nregions, nvoids, nbars;
   PDMaterial material[PD_MAX_MATERIALS];
   PDNotch    notch[PD_MAX_NOTCHES];
   PDRegion   region[PD_MAX_REGIONS];
   PDVoid     voids[PD_MAX_VOIDS];
+  PDBar      bar[PD_MAX_BARS];
   PetscInt   load_region; /* region whose force or reaction is the curve's load */
   PetscInt   disp_region; /* region whose mean displacement is the curve's displacement */
   PetscBool  has_cmod;

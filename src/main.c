@@ -108,7 +108,7 @@ static PetscBool AllFailed(MPI_Comm agree) {
 }
 
 static PetscErrorCode Describe(Run *r) {
-  const char    *names[5];
+  const char    *names[PD_MAX_EFFECTS];
   const PetscInt n = PDModelEffects(&r->model, names);
 
   PetscFunctionBeginUser;

@@ -40,6 +40,74 @@ static PetscReal Force(const PDLaw *law, PetscReal *kappa, PetscReal s) {
   return (1 - d) * s;
 }
 
+/* The steel of a bar segment (E = 200 GPa, f_y = 500 MPa: s_y = 2.5e-3) along a stretch path, the state
+   committed at every point as the kernel commits it at accepted steps. Returns force over E A. */
+static PetscReal SteelAlong(const PDSteel *st, PetscReal s, PetscReal *sp, PetscBool *broken, PetscReal *slope) {
+  PetscReal g;
+  PDSteelResponse(st, s, *sp, *broken, &g, slope, sp, broken);
+  return g;
+}
+
+static void SteelLaw(void) {
+  PDBar           bar = {.E = 200e9, .fy = 500e6, .hardening = 0.01, .rupture = 0.05};
+  PDSteel         st;
+  PetscReal       sp = 0, g, gp, W = 0, s0 = 0, g0 = 0;
+  PetscBool       broken = PETSC_FALSE;
+  const PetscReal sy     = 2.5e-3;
+
+  PDSteelSetUp(&bar, &st);
+  g = SteelAlong(&st, 0.5 * sy, &sp, &broken, &gp);
+  CheckRel("steel: elastic below yield, g = s", g, 0.5 * sy, 1e-14);
+  Check(gp == 1 && sp == 0 ? PETSC_TRUE : PETSC_FALSE, "steel: elastic slope 1, no plastic stretch", gp, 1);
+  /* monotonic loading to 4 s_y in small steps: the work done equals stored plus dissipated energy */
+  for (PetscInt k = 1; k <= 400; k++) {
+    const PetscReal s = 4 * sy * k / 400;
+    g                 = SteelAlong(&st, s, &sp, &broken, &gp);
+    W += 0.5 * (g + g0) * (s - s0);
+    s0 = s;
+    g0 = g;
+  }
+  CheckRel("steel: at 4 s_y, g = s_y + h (4 - 1) s_y (hardening 1 %)", g, sy * (1 + 0.01 * 3), 1e-12);
+  CheckRel("steel: plastic slope = h, the consistent tangent", gp, 0.01, 1e-12);
+  CheckRel("steel: work = stored + dissipated on the monotonic path", W, PDSteelStored(&st, s0, sp) + PDSteelDissipated(&st, sp), 1e-9);
+  /* unloading is elastic: slope 1 from the plastic stretch, no further plastic flow */
+  {
+    const PetscReal sp_peak = sp;
+    g                       = SteelAlong(&st, 3 * sy, &sp, &broken, &gp);
+    CheckRel("steel: unloading by s_y lowers the force by s_y (elastic)", g, sy * 1.03 - sy, 1e-12);
+    Check(gp == 1 && sp == sp_peak ? PETSC_TRUE : PETSC_FALSE, "steel: unloading keeps the plastic stretch, slope 1", gp, 1);
+    /* kinematic hardening: reversed yield where s - sp - H sp = -s_y, sp = (1 - h) 3 s_y from the loading */
+    {
+      const PetscReal H = 0.01 / 0.99, srev = sp_peak + H * sp_peak - sy;
+      CheckRel("steel: plastic stretch after loading to 4 s_y is (1 - h) 3 s_y", sp_peak, 0.99 * 3 * sy, 1e-12);
+      g = SteelAlong(&st, srev + 1e-9, &sp, &broken, &gp);
+      Check(gp == 1 && sp == sp_peak ? PETSC_TRUE : PETSC_FALSE, "steel: elastic just before the reversed yield point", gp, 1);
+      g = SteelAlong(&st, srev - 1e-4, &sp, &broken, &gp);
+      CheckRel("steel: past the reversed yield point the slope is h", gp, 0.01, 1e-12);
+      CheckRel("steel: reversed yield force -s_y + H sp - h 1e-4 (Bauschinger shift)", g, -sy + H * sp_peak - 0.01 * 1e-4, 1e-10);
+    }
+  }
+  /* rupture at 5 %: the segment breaks for good */
+  sp = 0;
+  g  = SteelAlong(&st, 0.049, &sp, &broken, &gp);
+  Check(!broken && g > 0 ? PETSC_TRUE : PETSC_FALSE, "steel: intact below the rupture strain", g, 0);
+  g = SteelAlong(&st, 0.05, &sp, &broken, &gp);
+  Check(broken && g == 0 && gp == 0 ? PETSC_TRUE : PETSC_FALSE, "steel: broken at the rupture strain, no force or stiffness", g, 0);
+  g = SteelAlong(&st, 0.001, &sp, &broken, &gp);
+  Check(broken && g == 0 ? PETSC_TRUE : PETSC_FALSE, "steel: a broken segment stays broken when unloaded", g, 0);
+  /* perfectly plastic: the force stays at s_y */
+  bar.hardening = 0;
+  bar.rupture   = 0;
+  PDSteelSetUp(&bar, &st);
+  sp     = 0;
+  broken = PETSC_FALSE;
+  g      = SteelAlong(&st, 10 * sy, &sp, &broken, &gp);
+  CheckRel("steel, perfectly plastic: g = s_y at 10 s_y", g, sy, 1e-14);
+  Check(gp == 0 && !broken ? PETSC_TRUE : PETSC_FALSE, "steel, perfectly plastic: slope 0, no rupture without a rupture strain", gp, 0);
+  g = SteelAlong(&st, -10 * sy, &sp, &broken, &gp);
+  CheckRel("steel, perfectly plastic: g = -s_y in compression after tension", g, -sy, 1e-14);
+}
+
 int main(int argc, char **argv) {
   PDLaw           law;
   const PDLawKind kinds[4] = {PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR};
@@ -177,6 +245,7 @@ int main(int argc, char **argv) {
   law.sublevels = 4;
   Check(PDLawNextThreshold(&law, &law.nominal, 2) == PETSC_MAX_REAL, "linear law: no parts, level 2 open whatever K",
         PDLawNextThreshold(&law, &law.nominal, 2), PETSC_MAX_REAL);
+  SteelLaw();
   {
     const int rc = CheckSummary();
     PetscCall(PetscFinalize());

@@ -12,6 +12,8 @@ static const char *base = "-pd_domain 0,0,0,0.04,0.025,0.02 -pd_dx 0.005 -pd_E 3
                           "-pd_region0_box 0,0,0,0,0.025,0.02 -pd_region0_kind support -pd_region0_dofs x,y,z "
                           "-pd_region1_box 0.04,0,0,0.04,0.025,0.02 -pd_region1_kind force -pd_region1_force 1,0,0 -pd_mat_type aij";
 
+static PetscInt nplastic; /* bar segments on their plastic branch in the last case's state */
+
 /* err: |J v - FD| / |J v|. With -pd_pc_matrix secant the tangent is assembled next to its preconditioning
    matrix; nneg counts the bonds with a negative axial stiffness in each (the tangent's, then the secant's). */
 static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2]) {
@@ -52,16 +54,26 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscCall(VecSetRandom(v, rnd));
   PetscCall(VecScale(v, 4e-4 * sc.dx));
   PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
-  if (m.softening) {
+  nplastic = 0;
+  if (m.softening || bd.nseg) {
     const PetscScalar *ul;
     Vec                loc;
     PetscCall(PetscMalloc1(bd.nbonds, &s));
     PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
     PetscCall(PDModelStretches(&m, ul, s));
     PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
-    for (PetscInt e = 0; e < bd.nbonds; e++) {
+    for (PetscInt e = 0; m.softening && e < bd.nbonds; e++) {
       m.kappa[e] = PetscMax(0, 0.5 * s[e]);
       m.level[e] = PD_BOND_SOFTENING;
+    }
+    /* bar segments with a plastic history of either sign; some yield further at u, some unload */
+    for (PetscInt g = 0; g < bd.nseg; g++) {
+      const PetscReal st = s[bd.seg_bond[g]];
+      PetscReal       f, fp, sp;
+      PetscBool       br;
+      m.sp_n[g] = 0.3 * st * (g % 2 ? 1 : -1);
+      PDSteelResponse(&m.steel[bd.seg_bar[g]], st, m.sp_n[g], PETSC_FALSE, &f, &fp, &sp, &br);
+      nplastic += sp != m.sp_n[g];
     }
     PetscCall(PetscFree(s));
   }
@@ -117,6 +129,16 @@ int main(int argc, char **argv) {
     PetscCall(RunCase(cases[k], &err, nneg));
     PetscCall(PetscSNPrintf(what, sizeof what, "|Jv - FD|/|Jv| < 1e-6: %s", cases[k]));
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, what, err, 1e-6);
+  }
+  {
+    /* steel bars (hardening 2 %, yield stretch 1.5e-4) in softening concrete: segments on both branches */
+    PetscReal err;
+    PetscInt  nneg[2];
+    PetscCall(RunCase("-pd_law nonlinear -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 -pd_bar0_diameter 0.004 -pd_bar0_fy 30e6 "
+                      "-pd_bar0_hardening 0.02",
+                      &err, nneg));
+    Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "|Jv - FD|/|Jv| < 1e-6: nonlinear concrete with a yielding steel bar", err, 1e-6);
+    Check(nplastic > 0 ? PETSC_TRUE : PETSC_FALSE, "the state has bar segments on their plastic branch", (PetscReal)nplastic, 1);
   }
   {
     /* the check can fail: the secant is not the derivative of a softening residual */

@@ -80,6 +80,9 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
         cut_volume[i] += vcut;
         if (j < lat->nowned) cut_volume[j] += vcut; /* a pair with a ghost is seen by the ghost's owner too */
         if (gi < gj) (*ncut_local)++;
+        if (PDBarOfPair(sc, lat, gi, gj) < 0) continue;
+        /* a bar crosses the notch: the pair stays for its segment, without concrete */
+        PetscCall(PairListPush(pl, i, -1 - j));
         continue;
       }
       PetscCall(PairListPush(pl, i, j));
@@ -208,8 +211,13 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &beta));
   for (PetscInt m = 0; m < sc->nmaterials; m++) c0[m] = PDMicromodulus(sc, sc->material[m].E);
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt i = bd->a[e], j = bd->b[e], mi = lat->material[i], mj = lat->material[j];
-    PetscInt       d[3], n2, m;
+    const PetscBool bar_only = bd->b[e] < 0 ? PETSC_TRUE : PETSC_FALSE;
+    PetscInt        i, j, mi, mj, d[3], n2, m;
+    if (bar_only) bd->b[e] = -1 - bd->b[e];
+    i  = bd->a[e];
+    j  = bd->b[e];
+    mi = lat->material[i];
+    mj = lat->material[j];
     /* length and partial volume from the exact lattice offset, in units of dx */
     n2 = PDLatticeOffset(lat, i, j, d);
     /* a bond joining two materials takes the softer one: the interface is no stronger than its weaker side */
@@ -218,6 +226,11 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     beta[e]         = PDFamilyPartialVolume(sc->horizon_ratio, n2, sc->partial_volume);
     bd->coef[e] = c0[m] * PDInfluenceValue(sc->influence, PetscSqrtReal((PetscReal)n2), sc->horizon_ratio) * beta[e] * lat->cell_volume *
                   lat->cell_volume;
+    if (bar_only) { /* its neighbour counts in the family volume as cut already (cut_volume) */
+      beta[e]         = 0;
+      bd->coef[e]     = 0;
+      bd->material[e] = PD_MATERIAL_NONE;
+    }
     if (PDBondCountedHere(lat, bd, e)) nonce++;
   }
   PetscCall(BuildIncidence(lat, bd));
@@ -229,6 +242,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscCall(PetscFree(cut_volume));
   PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscCall(PDBondsSetUpBars(sc, lat, bd));
   PetscCall(CheckOnePiece(sc, lat, bd));
   PetscFunctionReturn(0);
 }
@@ -241,6 +255,7 @@ PetscErrorCode PDBondsDestroy(PDBonds *bd) {
   PetscCall(PetscFree(bd->inc_start));
   PetscCall(PetscFree(bd->inc_bond));
   PetscCall(PetscFree(bd->lambda));
+  PetscCall(PetscFree4(bd->seg, bd->seg_bond, bd->seg_bar, bd->seg_coef));
   PetscFunctionReturn(0);
 }
 

@@ -21,7 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#define ROW_FIELDS 14
+#define ROW_FIELDS 16
 
 static const char *const fingerprint_names[] = {"nodes", "bonds", "dofs_per_node", "bond_stiffness_sum", "critical_stretch_sum"};
 #define NFINGERPRINT 5
@@ -34,8 +34,9 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw *law = &m->law[bd->material[e]];
     if (!PDBondCountedHere(m->lat, bd, e)) continue;
-    mine[0] += bd->coef[e];
+    mine[0] += PDBondStiffness(bd, e);
     if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc;
+    if (bd->seg && bd->seg[e] >= 0) mine[1] += m->steel[bd->seg_bar[bd->seg[e]]].sy;
   }
   PetscCall(MPIU_Allreduce(mine, sum, 2, MPIU_REAL, MPI_SUM, m->lat->comm));
   fp[0] = (PetscReal)m->lat->nglobal;
@@ -237,7 +238,9 @@ static void RowPack(const PDCurveRow *r, PetscScalar *a) {
                                    r->stored,
                                    r->dissipated,
                                    r->kinetic,
-                                   r->damped};
+                                   r->damped,
+                                   (PetscReal)r->yielded,
+                                   r->steel_stress};
   for (PetscInt k = 0; k < ROW_FIELDS; k++) a[k] = v[k];
 }
 
@@ -256,6 +259,62 @@ static void RowUnpack(const PetscScalar *a, PDCurveRow *r) {
   r->dissipated   = PetscRealPart(a[11]);
   r->kinetic      = PetscRealPart(a[12]);
   r->damped       = PetscRealPart(a[13]);
+  r->yielded      = (PetscInt)PetscRealPart(a[14]);
+  r->steel_stress = PetscRealPart(a[15]);
+}
+
+/* The state of the bar segments over the same incidence entries (0 where a bond has none): plastic
+   stretch, and 1 for a broken segment. */
+static PetscErrorCode WriteSteel(const PDModel *m, PetscViewer v) {
+  const PDBonds *bd = m->bonds;
+  Vec            S, R;
+  PetscScalar   *s, *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(HistoryVecs(m, &S, &R));
+  PetscCall(PetscObjectSetName((PetscObject)S, "steel_plastic_stretch"));
+  PetscCall(PetscObjectSetName((PetscObject)R, "steel_ruptured"));
+  PetscCall(VecGetArray(S, &s));
+  PetscCall(VecGetArray(R, &r));
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
+    const PetscInt sg = bd->seg[bd->inc_bond[p]];
+    s[p]              = sg >= 0 ? m->sp_n[sg] : 0;
+    r[p]              = sg >= 0 && m->ruptured_n[sg] ? 1 : 0;
+  }
+  PetscCall(VecRestoreArray(S, &s));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscCall(VecView(S, v));
+  PetscCall(VecView(R, v));
+  PetscCall(VecDestroy(&S));
+  PetscCall(VecDestroy(&R));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadSteel(PDModel *m, PetscViewer v) {
+  const PDBonds     *bd = m->bonds;
+  Vec                S, R;
+  const PetscScalar *s, *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(HistoryVecs(m, &S, &R));
+  PetscCall(PetscObjectSetName((PetscObject)S, "steel_plastic_stretch"));
+  PetscCall(PetscObjectSetName((PetscObject)R, "steel_ruptured"));
+  PetscCall(VecLoad(S, v));
+  PetscCall(VecLoad(R, v));
+  PetscCall(VecGetArrayRead(S, &s));
+  PetscCall(VecGetArrayRead(R, &r));
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
+    const PetscInt sg = bd->seg[bd->inc_bond[p]];
+    if (sg < 0) continue;
+    m->sp_n[sg]       = PetscRealPart(s[p]);
+    m->ruptured_n[sg] = PetscRealPart(r[p]) > 0.5 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  PetscCall(VecRestoreArrayRead(S, &s));
+  PetscCall(VecRestoreArrayRead(R, &r));
+  PetscCall(VecDestroy(&S));
+  PetscCall(VecDestroy(&R));
+  PetscCall(PDModelCountDamage(m));
+  PetscFunctionReturn(0);
 }
 
 /* Bond history as two vectors over the incidence entries of owned nodes (see the head of the file). */
@@ -433,6 +492,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", real_name[k], PETSC_REAL, &real[k]));
   PetscCall(WriteRows(comm, rec, v));
   if (m->softening) PetscCall(WriteHistory(m, kappa_prev, v));
+  if (m->scene->nbars) PetscCall(WriteSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {
     PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
     PetscCall(VecView(vec[k], v));
@@ -461,6 +521,7 @@ PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, Pet
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &real[k]));
   PetscCall(ReadRows(comm, rec, nrows, v));
   if (m->softening) PetscCall(ReadHistory(m, kappa_prev, v));
+  if (m->scene->nbars) PetscCall(ReadSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {
     PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
     PetscCall(VecLoad(vec[k], v));

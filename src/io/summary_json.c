@@ -30,7 +30,7 @@ static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *total) {
 /* Physical effects the scene calls for; discretisation corrections are listed apart. */
 static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
   const PDScene *sc = m->scene;
-  const char    *names[5];
+  const char    *names[PD_MAX_EFFECTS];
   const PetscInt n = PDModelEffects(m, names);
 
   PetscFunctionBeginUser;
@@ -98,6 +98,39 @@ static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
   for (PetscInt i = 0; i < sc->noptions; i++)
     if (sc->options[i].set) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", n++ ? ", " : "", sc->options[i].name));
   PetscCall(PetscFPrintf(comm, fp, "],\n"));
+  PetscFunctionReturn(0);
+}
+
+/* Steel bars: each bar's area, axial stiffness and yield force as built, the segments, how many yielded,
+   where the first one did (the first step with a yielded segment), and the largest steel stress. */
+static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const PDRecord *rec) {
+  const PDScene *sc    = m->scene;
+  PetscInt       first = -1;
+  PetscReal      smax  = 0;
+
+  PetscFunctionBeginUser;
+  if (!sc->nbars) PetscFunctionReturn(0);
+  for (PetscInt r = 0; r < rec->nrows; r++) {
+    if (first < 0 && rec->rows[r].yielded > 0) first = r;
+    smax = PetscMax(smax, rec->rows[r].steel_stress);
+  }
+  PetscCall(PetscFPrintf(comm, fp, "  \"bars\": {\n    \"list\": ["));
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    const PDBar    *b = &sc->bar[k];
+    const PetscReal A = b->count * PETSC_PI * b->diameter * b->diameter / 4;
+    PetscCall(PetscFPrintf(comm, fp,
+                           "%s{\"bar\": %" PetscInt_FMT ", \"area_m2\": %.10e, \"axial_stiffness_N\": %.10e, \"yield_force_N\": %.10e}",
+                           k ? ", " : "", k, (double)A, (double)(b->E * A), (double)(b->fy * A)));
+  }
+  PetscCall(PetscFPrintf(comm, fp,
+                         "],\n    \"segments\": %" PetscInt_FMT ",\n    \"yielded_segments\": %" PetscInt_FMT
+                         ",\n    \"max_steel_stress_Pa\": %.10e,\n",
+                         m->bonds->nseg_global, m->yielded, (double)smax));
+  if (first >= 0)
+    PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": {\"step\": %" PetscInt_FMT ", \"load_N\": %.10e, \"disp_m\": %.10e}\n  },\n",
+                           rec->rows[first].step, (double)rec->rows[first].load, (double)rec->rows[first].disp));
+  else
+    PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": null\n  },\n"));
   PetscFunctionReturn(0);
 }
 
@@ -180,6 +213,7 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          "  \"broken_bonds\": %" PetscInt_FMT ",\n  \"softening_bonds\": %" PetscInt_FMT
                          ",\n  \"max_bonds_per_iteration\": %" PetscInt_FMT ",\n  \"max_regularised_dofs\": %" PetscInt_FMT ",\n",
                          m->broken, m->softening_bonds, rec->max_events_per_its, m->max_regularised));
+  PetscCall(WriteBars(comm, fp, m, rec));
   PetscCall(PetscFPrintf(comm, fp, "  \"peak_load_N\": %s,\n  \"disp_at_peak_m\": %s,\n  \"final_load_N\": %s,\n", peak, dpeak, fin));
   PetscCall(PetscFPrintf(comm, fp, "  \"wall_s\": %.4f,\n", (double)wall));
   if (rec->fallback_step > 0) {

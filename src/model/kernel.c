@@ -50,10 +50,10 @@ static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDL
   return kap >= *cap ? *cap * (1 - 1e-12) : kap;
 }
 
-/* Scalar bond force g(s) and its slope. History kappa_n and the level the limiter allows give the
-   effective largest stretch; a bond held below a threshold stays on its current branch. Compression is
-   linear elastic whatever the damage (cracks do not interpenetrate). */
-static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
+/* Scalar force g(s) of a bond's concrete and its slope. History kappa_n and the level the limiter allows
+   give the effective largest stretch; a bond held below a threshold stays on its current branch.
+   Compression is linear elastic whatever the damage (cracks do not interpenetrate). */
+static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
   const PetscReal c = m->bonds->coef[e];
   const PDLaw    *law;
   PetscReal       kap, cap, d, dd;
@@ -98,6 +98,27 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
   }
 }
 
+/* The force of a bar segment at stretch s from its committed state, the consistent slope, and the state
+   it leaves. */
+static inline void SegmentForce(const PDModel *m, PetscInt sg, PetscReal s, PetscReal *g, PetscReal *gp, PetscReal *sp, PetscBool *rupt) {
+  const PetscReal c = m->bonds->seg_coef[sg];
+  PDSteelResponse(&m->steel[m->bonds->seg_bar[sg]], s, m->sp_n[sg], m->ruptured_n[sg], g, gp, sp, rupt);
+  *g *= c;
+  *gp *= c;
+}
+
+/* A bond's force and slope: its concrete's and its bar segment's, if it carries one. */
+static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
+  ConcreteForce(m, e, s, g, gp);
+  if (m->bonds->seg && m->bonds->seg[e] >= 0) {
+    PetscReal gs, gps, sp;
+    PetscBool rupt;
+    SegmentForce(m, m->bonds->seg[e], s, &gs, &gps, &sp, &rupt);
+    *g += gs;
+    *gp += gps;
+  }
+}
+
 PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, PetscScalar *f) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
@@ -111,7 +132,7 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     PetscReal      dir[3], L0, L, s, q, g, gp;
     BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
     BondForce(m, e, s, &g, &gp);
-    if (m->commit_history) m->kappa[e] = PetscMax(m->kappa[e], s);
+    if (m->commit_history) PDModelCommitBond(m, e, s);
     for (PetscInt a = 0; a < bs; a++) {
       f[bs * i + a] -= g * dir[a];
       f[bs * j + a] += g * dir[a];
@@ -138,6 +159,16 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
     PetscReal      dir[3], L0, L, s, q, c = bd->coef[e];
     if (!PDBondCountedHere(lat, bd, e)) continue;
     BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
+    if (bd->seg && bd->seg[e] >= 0) {
+      const PetscInt sg = bd->seg[e];
+      const PDSteel *st = &m->steel[bd->seg_bar[sg]];
+      PetscReal      g, gp, sp;
+      PetscBool      rupt;
+      SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
+      /* a broken segment keeps what it dissipated; its elastic energy went with the break */
+      if (!rupt) es += bd->seg_coef[sg] * L0 * PDSteelStored(st, s, sp);
+      ed += bd->seg_coef[sg] * L0 * PDSteelDissipated(st, sp);
+    }
     if (!m->softening || m->law[bd->material[e]].kind == PD_LAW_ELASTIC) {
       es += 0.5 * c * s * s * L0;
       continue;
@@ -194,7 +225,7 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
     const PetscInt i = bd->a[e], j = bd->b[e];
     PetscReal      dir[3], L0, L, s, q, d[3] = {0, 0, 0}, ed = 0;
     BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
-    const PetscReal a = ka ? ka[e] : bd->coef[e] / L0, b = kb ? kb[e] : 0;
+    const PetscReal a = ka ? ka[e] : PDBondStiffness(bd, e) / L0, b = kb ? kb[e] : 0;
     for (PetscInt r = 0; r < bs; r++) {
       d[r] = PetscRealPart(x[bs * j + r] - x[bs * i + r]);
       ed += dir[r] * d[r];
@@ -241,10 +272,10 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
       if (diag == n && lat->gid[j] > lat->gid[i]) diag = c++;
       BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &st, &q);
       /* without per-bond scalars the tangent is the constant linearised micromodulus */
-      a = ka ? ka[e] : bd->coef[e] / L0;
+      a = ka ? ka[e] : PDBondStiffness(bd, e) / L0;
       b = kb ? kb[e] : 0;
       for (PetscInt r = 0; r < bs; r++) {
-        Dref[r] += bd->coef[e] / L0 * dir[r] * dir[r];
+        Dref[r] += PDBondStiffness(bd, e) / L0 * dir[r] * dir[r];
         for (PetscInt qq = 0; qq < bs; qq++) {
           K[r * bs + qq] = a * dir[r] * dir[qq] + (r == qq ? b : 0);
           D[r * bs + qq] += K[r * bs + qq];
@@ -295,6 +326,35 @@ PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) 
               &s[e], &q);
   }
   PetscFunctionReturn(0);
+}
+
+/* Commits one bond's state at stretch s: the largest stretch of its concrete (the explicit path, which has
+   no limiter, commits at every force evaluation) and its bar segment's plastic stretch and rupture. */
+void PDModelCommitBond(PDModel *m, PetscInt e, PetscReal s) {
+  if (m->softening) m->kappa[e] = PetscMax(m->kappa[e], s);
+  if (m->bonds->seg && m->bonds->seg[e] >= 0) PDModelCommitSegment(m, m->bonds->seg[e], s);
+}
+
+void PDModelCommitSegment(PDModel *m, PetscInt sg, PetscReal s) {
+  PetscReal g, gp;
+  SegmentForce(m, sg, s, &g, &gp, &m->sp_n[sg], &m->ruptured_n[sg]);
+}
+
+/* Largest |stress| of the bar segments this rank holds: force over the bar's area (count pi d^2 / 4). */
+PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
+  const PDBonds   *bd   = m->bonds;
+  const PDLattice *lat  = m->lat;
+  PetscReal        smax = 0;
+  for (PetscInt sg = 0; sg < bd->nseg; sg++) {
+    const PetscInt e = bd->seg_bond[sg], i = bd->a[e], j = bd->b[e];
+    const PDBar   *b = &m->scene->bar[bd->seg_bar[sg]];
+    PetscReal      dir[3], L0, L, s, q, g, gp, sp;
+    PetscBool      rupt;
+    BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
+    SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
+    smax = PetscMax(smax, PetscAbsReal(g) / (b->count * PETSC_PI * b->diameter * b->diameter / 4));
+  }
+  return smax;
 }
 
 /* Bond damage with the committed history, for output. */

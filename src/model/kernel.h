@@ -10,6 +10,9 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
                                         PetscScalar *y);
 PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
+void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
+void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
+PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 
 /* A bond's stretch thresholds: its own (scatter, surface correction) or its law's nominal ones. */
 static inline const PDLawBond *PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {

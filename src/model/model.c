@@ -245,8 +245,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->bonds = bd;
   m->bs    = sc->dim;
   for (PetscInt k = 0; k < sc->nmaterials; k++) PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
+  for (PetscInt k = 0; k < sc->nbars; k++) PDSteelSetUp(&sc->bar[k], &m->steel[k]);
   m->softening = PDSceneHasDamage(sc);
-  m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening) ? PETSC_TRUE : PETSC_FALSE;
+  m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening && !sc->nbars) ? PETSC_TRUE : PETSC_FALSE;
   /* limiter cap: 10 events per 150,000 bonds by default. N = 10 suits the D = 50 beams at dx = 5 mm
      (157,000 bonds; N = 1, 10 and 100 give peaks within 1.3 %); at dx = 2.5 mm (1.48 M bonds) N = 10 took
      130 Newton iterations per increment near the peak, N = 100 about 25 (docs/softening.md). */
@@ -288,6 +289,10 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
     }
   }
+  if (sc->nbars) {
+    PetscCall(PetscCalloc2(PetscMax(1, bd->nseg), &m->sp_n, PetscMax(1, bd->nseg), &m->ruptured_n));
+    m->history_bytes += (PetscInt64)bd->nseg * (sizeof(PetscReal) + sizeof(PetscBool));
+  }
   {
     PetscInt64 mine = m->history_bytes;
     PetscCall(MPIU_Allreduce(&mine, &m->history_bytes, 1, MPIU_INT64, MPI_SUM, lat->comm));
@@ -312,6 +317,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree(m->kp));
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->thr));
+  PetscCall(PetscFree2(m->sp_n, m->ruptured_n));
   PetscFunctionReturn(0);
 }
 
@@ -536,6 +542,21 @@ PetscErrorCode PDModelElasticApply(PDModel *m, Vec x, Vec y) {
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress) {
+  const PetscScalar *ul;
+  Vec                loc;
+  PetscReal          mine;
+
+  PetscFunctionBeginUser;
+  *stress = 0;
+  if (!m->scene->nbars) PetscFunctionReturn(0);
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
+  mine = PDModelSteelStressLocal(m, ul);
+  PetscCall(PDModelRestoreLocal(m, &ul, &loc));
+  PetscCall(MPIU_Allreduce(&mine, stress, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
+  PetscFunctionReturn(0);
+}
+
 /* Strain energy stored in the bonds and energy dissipated by damage, summed over ranks (J). */
 PetscErrorCode PDModelEnergy(PDModel *m, Vec u, PetscReal *stored, PetscReal *dissipated) {
   const PetscScalar *ul;
@@ -575,7 +596,7 @@ PetscErrorCode PDModelStiffnessRowBound(const PDModel *m, Vec row) {
       for (PetscInt a = 0; a < bs; a++) L += (xb[a] - xa[a]) * (xb[a] - xa[a]);
       L = PetscSqrtReal(L);
       for (PetscInt a = 0; a < bs; a++) sum += PetscAbsReal(xb[a] - xa[a]) / L;
-      for (PetscInt a = 0; a < bs; a++) r[bs * i + a] += 2 * bd->coef[e] / L * PetscAbsReal(xb[a] - xa[a]) / L * sum;
+      for (PetscInt a = 0; a < bs; a++) r[bs * i + a] += 2 * PDBondStiffness(bd, e) / L * PetscAbsReal(xb[a] - xa[a]) / L * sum;
     }
   }
   PetscCall(VecRestoreArray(row, &r));
@@ -583,7 +604,7 @@ PetscErrorCode PDModelStiffnessRowBound(const PDModel *m, Vec row) {
 }
 
 /* Physical effects the scene calls for (discretisation corrections are not effects). */
-PetscInt PDModelEffects(const PDModel *m, const char *names[5]) {
+PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
   const PDScene *sc   = m->scene;
   PetscBool      soft = PETSC_FALSE, brk = PETSC_FALSE;
   PetscInt       n = 0;
@@ -595,6 +616,12 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[5]) {
   names[n++] = "elasticity";
   if (soft) names[n++] = "softening_damage";
   if (brk) names[n++] = "bond_breaking";
+  if (sc->nbars) names[n++] = "steel_plasticity";
+  for (PetscInt k = 0; k < sc->nbars; k++)
+    if (sc->bar[k].rupture > 0) {
+      names[n++] = "steel_rupture";
+      break;
+    }
   if (sc->kinematics == PD_KINEMATICS_FINITE) names[n++] = "geometric_nonlinearity";
   if (sc->explicit_mode) names[n++] = "inertia";
   return n;

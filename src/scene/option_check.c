@@ -125,6 +125,8 @@ static void UnusedMessage(const char *given, const PDScene *sc, char *msg, size_
     PDSchemaFamily(s->family, &prefix, &noun, &nouns, NULL, NULL);
     if (s->family == PD_FAMILY_REGION || s->family == PD_FAMILY_VOID)
       snprintf(what, sizeof what, "%s%d_box or %s%d_cylinder", prefix, (int)n, prefix, (int)n);
+    else if (s->family == PD_FAMILY_BAR)
+      snprintf(what, sizeof what, "%s%d_line", prefix, (int)n);
     else
       snprintf(what, sizeof what, "%s%d_box", prefix, (int)n);
     if (k == n)

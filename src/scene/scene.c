@@ -184,6 +184,7 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
   PetscCall(ReadBody(PetscOptionsObject, comm, sc));
   PetscCall(ReadDiscretisation(PetscOptionsObject, sc));
   PetscCall(PDSceneReadParts(PetscOptionsObject, sc));
+  PetscCall(PDSceneReadBars(PetscOptionsObject, sc));
   PetscCall(ReadLoadPath(PetscOptionsObject, comm, sc));
   PetscCall(PDSceneReadSolution(PetscOptionsObject, comm, sc));
   PetscCall(ReadOutput(PetscOptionsObject, sc));

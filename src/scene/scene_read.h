@@ -5,5 +5,7 @@
 
 /* Materials, notches and node regions (-pd_materialK_*, -pd_notchK_*, -pd_regionK_*). */
 PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *);
+/* Steel bars (-pd_barK_*). */
+PetscErrorCode PDSceneReadBars(PetscOptionItems *PetscOptionsObject, PDScene *);
 /* Control, path following, the explicit path, the failure search, the damage limiter, checkpoints. */
 PetscErrorCode PDSceneReadSolution(PetscOptionItems *PetscOptionsObject, MPI_Comm, PDScene *);

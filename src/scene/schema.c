@@ -14,6 +14,7 @@ static const struct {
     [PD_FAMILY_NOTCH]    = {"-pd_notch", "notch", "notches", 0, PD_MAX_NOTCHES - 1},
     [PD_FAMILY_REGION]   = {"-pd_region", "region", "regions", 0, PD_MAX_REGIONS - 1},
     [PD_FAMILY_VOID]     = {"-pd_void", "void", "voids", 0, PD_MAX_VOIDS - 1},
+    [PD_FAMILY_BAR]      = {"-pd_bar", "bar", "bars", 0, PD_MAX_BARS - 1},
 };
 
 void PDSchemaFamily(PDOptionFamily f, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last) {
@@ -143,6 +144,8 @@ PetscInt PDSchemaFamilyCount(PDOptionFamily f, const PDScene *sc) {
     return sc->nregions;
   case PD_FAMILY_VOID:
     return sc->nvoids;
+  case PD_FAMILY_BAR:
+    return sc->nbars;
   default:
     return 1;
   }

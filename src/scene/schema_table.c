@@ -10,6 +10,7 @@ static const char *const Axes[]   = {"x", "y", "z", NULL};
 #define NOTCH PD_FAMILY_NOTCH
 #define REGION PD_FAMILY_REGION
 #define HOLE PD_FAMILY_VOID
+#define BAR PD_FAMILY_BAR
 
 const PDOptionSpec PDOptionSchema[] = {
     /* scene and body */
@@ -263,6 +264,53 @@ const PDOptionSpec PDOptionSchema[] = {
      .def    = "z",
      .when   = PD_WHEN_CYLINDER,
      .help   = "Axis of a cylinder void (z in 2D)"},
+    /* steel bars */
+    {.name     = "_line",
+     .family   = BAR,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "required",
+     .help     = "Steel bar: its end points x,y,z,x,y,z, different along one lattice axis only; laid on the nearest line of nodes, whose "
+                 "consecutive pairs carry the bar's segments (perfect bond)"},
+    {.name     = "_diameter",
+     .family   = BAR,
+     .type     = PD_OPTION_REAL,
+     .unit     = "m",
+     .def_note = "required",
+     .range    = "(0, inf)",
+     .help     = "Bar diameter: the area A_s = count pi d^2 / 4 sets the segments' axial stiffness E A_s and yield force f_y A_s"},
+    {.name   = "_count",
+     .family = BAR,
+     .type   = PD_OPTION_INT,
+     .def    = "1",
+     .range  = "[1, inf)",
+     .help   = "Identical bars lumped on the line (for example the bars across a 2D model's thickness)"},
+    {.name   = "_E",
+     .family = BAR,
+     .type   = PD_OPTION_REAL,
+     .unit   = "Pa",
+     .def    = "200e9",
+     .range  = "(0, inf)",
+     .help   = "Young's modulus of the steel"},
+    {.name   = "_fy",
+     .family = BAR,
+     .type   = PD_OPTION_REAL,
+     .unit   = "Pa",
+     .def    = "500e6",
+     .range  = "(0, inf)",
+     .help   = "Yield stress of the steel, in tension and compression"},
+    {.name   = "_hardening",
+     .family = BAR,
+     .type   = PD_OPTION_REAL,
+     .def    = "0",
+     .range  = "[0, 1)",
+     .help   = "Post-yield tangent modulus over E (linear kinematic hardening; 0: perfectly plastic). Unloading is elastic"},
+    {.name   = "_rupture",
+     .family = BAR,
+     .type   = PD_OPTION_REAL,
+     .def    = "0",
+     .range  = "[0, inf)",
+     .help   = "Strain at which a segment of the bar breaks for good, above the yield strain; 0: never"},
     /* load path and curve */
     {.name     = "-pd_load_region",
      .type     = PD_OPTION_INT,

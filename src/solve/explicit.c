@@ -316,9 +316,11 @@ static PetscErrorCode PostStep(TS ts) {
     row.newton_its   = 0;
     row.ksp_its      = 0;
     row.broken_bonds = m->broken;
+    row.yielded      = m->yielded;
     row.wall         = now - c->rec->t_start;
     PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
     PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
+    PetscCall(PDModelSteelStress(m, u, &row.steel_stress));
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
     if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;
@@ -395,7 +397,7 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   c->rec = rec;
   /* dynamics has no limiter: every level is open, and histories rise with each force evaluation */
   for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
-  m->commit_history = m->softening;
+  m->commit_history = m->softening || m->scene->nbars ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(VecDuplicate(m->f_ref, &c->mass));
   PetscCall(VecDuplicate(m->f_ref, &c->f_int));
   PetscCall(VecDuplicate(m->f_ref, &c->u_prev));
@@ -458,6 +460,10 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
   c->stopped = c->cmod_reached = c->blew_up = c->interrupted = PETSC_FALSE;
   if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
+  if (m->scene->nbars) {
+    PetscCall(PetscArrayzero(m->sp_n, m->bonds->nseg));
+    PetscCall(PetscArrayzero(m->ruptured_n, m->bonds->nseg));
+  }
   m->broken = 0;
   PetscCall(PDRecordClearRows(c->rec));
   PetscCall(VecZeroEntries(c->X));

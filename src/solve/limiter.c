@@ -128,11 +128,13 @@ static PetscBool Softened(const PDModel *m, PetscInt e) {
 /* Broken and softening bonds (global, each bond counted once) from the committed history. */
 PetscErrorCode PDModelCountDamage(PDModel *m) {
   const PDBonds *bd       = m->bonds;
-  PetscInt       count[2] = {0, 0}, total[2]; /* broken, softening */
+  PetscInt       count[3] = {0, 0, 0}, total[3]; /* broken, softening, yielded bar segments */
 
   PetscFunctionBeginUser;
-  if (!m->softening) PetscFunctionReturn(0);
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
+  if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
+  for (PetscInt sg = 0; sg < bd->nseg; sg++)
+    if ((m->sp_n[sg] != 0 || m->ruptured_n[sg]) && PDBondCountedHere(m->lat, bd, bd->seg_bond[sg])) count[2]++;
+  for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
     const PDLaw     *law = &m->law[bd->material[e]];
     const PDLawBond *t   = PDModelBondThresholds(m, e, law);
     if (law->kind == PD_LAW_ELASTIC || !PDBondCountedHere(m->lat, bd, e)) continue;
@@ -141,9 +143,10 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
     else if (Softened(m, e))
       count[1]++;
   }
-  PetscCall(MPIU_Allreduce(count, total, 2, MPIU_INT, MPI_SUM, m->lat->comm));
+  PetscCall(MPIU_Allreduce(count, total, 3, MPIU_INT, MPI_SUM, m->lat->comm));
   m->broken          = total[0];
   m->softening_bonds = total[1];
+  m->yielded         = total[2];
   PetscFunctionReturn(0);
 }
 
@@ -152,15 +155,18 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   PetscReal     *s;
 
   PetscFunctionBeginUser;
-  if (!m->softening) PetscFunctionReturn(0);
+  if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   s = m->stretch;
+  if (!s) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &s)); /* bars in elastic concrete keep no scratch */
   PetscCall(PDModelStretchesAt(m, u, s));
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
+  for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
     const PetscReal cap = Threshold(m, e);
     m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
     m->level_n[e]       = m->level[e];
   }
+  for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, s[bd->seg_bond[sg]]);
+  if (s != m->stretch) PetscCall(PetscFree(s));
   PetscCall(PDModelCountDamage(m));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
   PetscFunctionReturn(0);

@@ -61,10 +61,12 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   row->newton_its   = its;
   row->ksp_its      = lits;
   row->broken_bonds = m->broken;
+  row->yielded      = m->yielded;
   row->wall         = now - rec->t_start;
   row->external     = p->w_ext;
   row->kinetic = row->damped = 0;
   PetscCall(PDModelEnergy(m, u, &row->stored, &row->dissipated));
+  PetscCall(PDModelSteelStress(m, u, &row->steel_stress));
   PetscCall(PDRecordAddRow(rec, row));
   rec->steps = p->step;
   PetscFunctionReturn(0);

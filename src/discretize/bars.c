@@ -1,0 +1,84 @@
+/* Steel bar segments on the lattice (docs/reinforcement.md). A bar's line is laid on the nearest line of
+   nodes along its axis; each pair of consecutive nodes on it within the bar's extent is a segment, an
+   axial member of stiffness E A_s and yield force f_y A_s exactly, whatever dx. */
+#include "pd_lattice.h"
+
+/* The node line of bar b: the nearest node indices across its axis (line[a] for a != axis), and the first
+   and last node index along it within the bar's ends. */
+static void NodeLine(const PDLattice *lat, const PDBar *b, PetscInt line[3], PetscInt *first, PetscInt *last) {
+  const PetscInt  a  = b->axis;
+  const PetscReal lo = (PetscMin(b->line[a], b->line[3 + a]) - lat->origin[a]) / lat->dx;
+  const PetscReal hi = (PetscMax(b->line[a], b->line[3 + a]) - lat->origin[a]) / lat->dx;
+  for (PetscInt c = 0; c < 3; c++) {
+    const PetscInt near = (PetscInt)PetscFloorReal((b->line[c] - lat->origin[c]) / lat->dx + 0.5);
+    line[c]             = c < lat->dim ? PetscMin(PetscMax(near, 0), lat->n[c] - 1) : 0;
+  }
+  *first = PetscMax(0, (PetscInt)PetscCeilReal(lo - 1e-9));
+  *last  = PetscMin(lat->n[a] - 1, (PetscInt)PetscFloorReal(hi + 1e-9));
+}
+
+PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, PetscInt gj) {
+  PetscInt p[3], q[3];
+
+  if (!sc->nbars) return -1;
+  PDLatticeNodeIndices(lat, gi, p);
+  PDLatticeNodeIndices(lat, gj, q);
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    const PDBar   *b = &sc->bar[k];
+    const PetscInt a = b->axis;
+    PetscInt       line[3], first, last;
+    PetscBool      on = PetscAbsInt(p[a] - q[a]) == 1 ? PETSC_TRUE : PETSC_FALSE;
+    NodeLine(lat, b, line, &first, &last);
+    for (PetscInt c = 0; c < 3 && on; c++)
+      if (c != a) on = p[c] == line[c] && q[c] == line[c] ? PETSC_TRUE : PETSC_FALSE;
+    if (on && PetscMin(p[a], q[a]) >= first && PetscMax(p[a], q[a]) <= last) return k;
+  }
+  return -1;
+}
+
+PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds *bd) {
+  PetscInt mine = 0, n = 0;
+
+  PetscFunctionBeginUser;
+  if (!sc->nbars) PetscFunctionReturn(0);
+  /* two bars sharing a pair of nodes would give it two segments: one bar with both areas is what is meant */
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    const PDBar *b = &sc->bar[k];
+    PetscInt     lb[3], fb, eb;
+    NodeLine(lat, b, lb, &fb, &eb);
+    PetscCheck(eb > fb, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_line: the bar holds no two nodes of the lattice (dx = %g m)", b->option,
+               (double)lat->dx);
+    for (PetscInt l = 0; l < k; l++) {
+      const PDBar *c = &sc->bar[l];
+      PetscInt     lc[3], fc, ec;
+      PetscBool    same = b->axis == c->axis ? PETSC_TRUE : PETSC_FALSE;
+      NodeLine(lat, c, lc, &fc, &ec);
+      for (PetscInt a = 0; a < 3 && same; a++)
+        if (a != b->axis) same = lb[a] == lc[a] ? PETSC_TRUE : PETSC_FALSE;
+      PetscCheck(!same || PetscMax(fb, fc) >= PetscMin(eb, ec), lat->comm, PETSC_ERR_USER_INPUT,
+                 "Options %s_line and %s_line: the two bars lie on one line of nodes and overlap; give one bar with _count, or move one "
+                 "by at least dx = %g m",
+                 b->option, c->option, (double)lat->dx);
+    }
+  }
+  for (PetscInt e = 0; e < bd->nbonds; e++)
+    if (PDBarOfPair(sc, lat, lat->gid[bd->a[e]], lat->gid[bd->b[e]]) >= 0) n++;
+  bd->nseg = n;
+  PetscCall(PetscMalloc4(PetscMax(1, bd->nbonds), &bd->seg, PetscMax(1, n), &bd->seg_bond, PetscMax(1, n), &bd->seg_bar, PetscMax(1, n),
+                         &bd->seg_coef));
+  n = 0;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt k = PDBarOfPair(sc, lat, lat->gid[bd->a[e]], lat->gid[bd->b[e]]);
+    bd->seg[e]       = -1;
+    if (k < 0) continue;
+    const PDBar *b  = &sc->bar[k];
+    bd->seg[e]      = n;
+    bd->seg_bond[n] = e;
+    bd->seg_bar[n]  = k;
+    bd->seg_coef[n] = b->E * b->count * PETSC_PI * b->diameter * b->diameter / 4;
+    if (PDBondCountedHere(lat, bd, e)) mine++;
+    n++;
+  }
+  PetscCall(MPIU_Allreduce(&mine, &bd->nseg_global, 1, MPIU_INT, MPI_SUM, lat->comm));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,71 @@
+/* Steel bars of a scene (-pd_barK_*): straight, along a lattice axis, numbered without gaps; a bar
+   exists once its line is given. */
+#include "option_values.h"
+#include "scene_read.h"
+
+static PetscErrorCode BarReal(PetscOptionItems *PetscOptionsObject, PDScene *sc, const PDBar *b, const char *name, PetscReal *v) {
+  char opt[64];
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s%s", b->option, name));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, opt, v, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
+  PDBar    *b = &sc->bar[k];
+  char      opt[64];
+  PetscInt  n = 6, nmove = 0;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(b->option, sizeof b->option, "-pd_bar%" PetscInt_FMT, k));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_line", b->option));
+  PetscCall(PDOptionRealArray(PetscOptionsObject, sc, opt, b->line, &n, &set));
+  PetscCheck(n == 6, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected 6 numbers (x,y,z of each end), got %" PetscInt_FMT, opt,
+             n);
+  if (sc->dim == 2) b->line[2] = b->line[5] = 0;
+  for (PetscInt a = 0; a < sc->dim; a++) {
+    const PetscReal lo = PetscMin(b->line[a], b->line[3 + a]), hi = PetscMax(b->line[a], b->line[3 + a]);
+    if (hi - lo > 1e-9 * sc->dx) {
+      b->axis = a;
+      nmove++;
+    }
+    PetscCheck(lo >= sc->domain[a] - 1e-9 * sc->dx && hi <= sc->domain[3 + a] + 1e-9 * sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: the bar leaves the domain -pd_domain along %c", opt, (char)('x' + a));
+  }
+  PetscCheck(nmove == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: a bar runs along one lattice axis (its ends differ in exactly one coordinate), these differ in %" PetscInt_FMT,
+             opt, nmove);
+  PetscCheck(PetscAbsReal(b->line[3 + b->axis] - b->line[b->axis]) >= sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: a bar spans at least one grid spacing (%g m) to hold a segment, this one %g m", opt, (double)sc->dx,
+             (double)PetscAbsReal(b->line[3 + b->axis] - b->line[b->axis]));
+  PetscCall(BarReal(PetscOptionsObject, sc, b, "_diameter", &b->diameter));
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_diameter", b->option));
+  PetscCheck(b->diameter > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a bar", opt);
+  b->count = 1;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_count", b->option));
+  PetscCall(PDOptionInt(PetscOptionsObject, sc, opt, &b->count, NULL));
+  PetscCall(BarReal(PetscOptionsObject, sc, b, "_E", &b->E));
+  PetscCall(BarReal(PetscOptionsObject, sc, b, "_fy", &b->fy));
+  PetscCall(BarReal(PetscOptionsObject, sc, b, "_hardening", &b->hardening));
+  PetscCall(BarReal(PetscOptionsObject, sc, b, "_rupture", &b->rupture));
+  PetscCheck(b->rupture == 0 || b->rupture > b->fy / b->E, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_rupture: the rupture strain lies above the yield strain f_y/E = %g, got %g", b->option, (double)(b->fy / b->E),
+             (double)b->rupture);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDSceneReadBars(PetscOptionItems *PetscOptionsObject, PDScene *sc) {
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < PD_MAX_BARS; k++) {
+    char      opt[64];
+    PetscBool has;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "-pd_bar%" PetscInt_FMT "_line", k));
+    PetscCall(PetscOptionsHasName(NULL, NULL, opt, &has));
+    if (!has) break;
+    sc->nbars = k + 1;
+    PetscCall(ReadBar(PetscOptionsObject, sc, k));
+  }
+  PetscFunctionReturn(0);
+}
