@@ -54,6 +54,18 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_implex", "1.5"], "-pd_arclength_implex"),
     ("gregoire_d50_hn", ["-pd_control", "arclength", "-pd_arclength_type", "dissipation", "-pd_arclength_implex", "0.01"],
      "-pd_arclength_implex"),
+    # steel bars
+    ("bar_prism", ["-pd_bar0_line", "0,0.05,0.05,0.4,0.06,0.05"], "-pd_bar0_line"),  # not along one axis
+    ("bar_prism", ["-pd_bar0_line", "0,0.05,0.05,0.5,0.05,0.05"], "-pd_bar0_line"),  # leaves the domain
+    ("bar_prism", ["-pd_bar0_line", "0,0.05,0.05,0.4"], "-pd_bar0_line"),  # four numbers
+    ("bar_prism", ["-pd_bar0_line", "0.1,0.05,0.05,0.11,0.05,0.05"], "-pd_bar0_line"),  # shorter than dx
+    ("bar_prism", ["-pd_bar0_diameter", "-0.012"], "-pd_bar0_diameter"),
+    ("bar_prism", ["-pd_bar0_hardening", "1"], "-pd_bar0_hardening"),
+    ("bar_prism", ["-pd_bar0_rupture", "0.001"], "-pd_bar0_rupture"),  # below the yield strain 0.0025
+    ("bar_prism", ["-pd_bar0_count", "0"], "-pd_bar0_count"),
+    ("bar_prism", ["-pd_bar1_line", "0.1,0.05,0.05,0.3,0.05,0.05", "-pd_bar1_diameter", "0.01"], "-pd_bar1_line"),  # overlaps bar 0
+    ("bar_prism", ["-pd_bar2_line", "0,0.03,0.03,0.4,0.03,0.03", "-pd_bar2_diameter", "0.01"], "-pd_bar2"),  # numbering gap
+    ("cantilever", ["-pd_bar0_line", "0,0.05,0.05,1,0.05,0.05"], "-pd_bar0_diameter"),  # diameter missing
 ]
 
 

@@ -1,0 +1,82 @@
+"""Steel bars (-pd_barK_*): axial stiffness and yield force as built, a bar holding a cut prism, MPI.
+Usage: test_bars.py axial|notch|mpi"""
+import math
+import sys
+
+from pdtest import check, rel, run
+
+AREA = math.pi * 0.012 ** 2 / 4  # m^2, the 12 mm bar of options/bar_prism.opts
+FY, ES = 500e6, 200e9
+
+
+def expected(eps, h):
+    """Force of a bar of AREA at axial strain eps, bilinear with hardening ratio h."""
+    ey = FY / ES
+    return ES * AREA * eps if eps <= ey else FY * AREA + h * ES * AREA * (eps - ey)
+
+
+def prism(model, dx):
+    """The prism of options/bar_prism.opts without its cut, concrete 2e8 times softer than the steel
+    (E = 1e3 Pa), pulled by 2 mm; in plane stress 100 mm thick with the bar as two of half its area."""
+    if model == "3d":
+        geo = ["-pd_domain", "0,0,0,0.4,0.1,0.1", "-pd_bar0_line", "0,0.05,0.05,0.4,0.05,0.05", "-pd_bar0_diameter", "0.012",
+               "-pd_region0_box", "0,0,0,0,0.1,0.1", "-pd_region0_dofs", "x,y,z", "-pd_region1_box", "0.4,0,0,0.4,0.1,0.1",
+               "-pd_region1_dofs", "x,y,z", "-pd_region1_displacement", "0.002,0,0"]
+    else:
+        geo = ["-pd_model", model, "-pd_thickness", "0.1", "-pd_domain", "0,0,0.4,0.1", "-pd_bar0_line", "0,0.05,0,0.4,0.05,0",
+               "-pd_bar0_count", "2", "-pd_bar0_diameter", repr(0.012 / math.sqrt(2)), "-pd_region0_box", "0,0,0,0.1",
+               "-pd_region0_dofs", "x,y", "-pd_region1_box", "0.4,0,0.4,0.1", "-pd_region1_dofs", "x,y", "-pd_region1_displacement", "0.002,0"]
+    return ["-pd_name", "prism", "-pd_dx", dx, "-pd_E", "1e3", "-pd_law", "elastic", "-pd_region0_kind", "support", "-pd_region1_kind",
+            "displacement", "-pd_steps", "10", "-pd_bar0_hardening", "0.02", "-ksp_rtol", "1e-12"] + geo
+
+
+def axial():
+    # The bar alone carries the load (the concrete's share is below 1e-6 of it): the force against the end
+    # displacement is the nominal bar's, elastic, at yield and hardening (2 %), at spacings that do and do
+    # not divide the section, in 3D and plane stress. The bar's length is that between the first and the
+    # last node on its line, 0.4 m - dx. Tolerance 1e-4: the linear solves' (measured: 6e-6).
+    for model, dx in (("3d", 0.02), ("3d", 0.0125), ("plane_stress", 0.01)):
+        r = run(None, *prism(model, dx))
+        length = 0.4 - dx
+        worst = max(rel(x["load_N"], expected(x["disp_m"] / length, 0.02)) for x in r.curve)
+        check(worst < 1e-4, "%s, dx = %g m: force within %.1e of E A_s eps, then f_y A_s + h E A_s (eps - eps_y), over %d steps (1e-4)"
+              % (model, dx, worst, len(r.curve)))
+        s = r.summary["bars"]
+        check(s["segments"] == round(length / dx), "%d segments on the bar's line" % s["segments"])
+        check(s["yielded_segments"] == s["segments"], "every segment yielded (%d)" % s["yielded_segments"])
+
+
+def notch():
+    # Cut through at mid-length, the prism hangs on its bar: the bar's segment across the cut is kept without
+    # concrete, and once it yields the load stays at f_y A_s exactly, at any dx (1e-9: round-off).
+    for dx in ("0.02", "0.01"):
+        r = run("bar_prism", "-pd_dx", dx, "-ksp_rtol", "1e-12")
+        c, s = r.curve, r.summary
+        check(s["effects"] == ["elasticity", "steel_plasticity"], "effects %s" % s["effects"])
+        top = max(x["load_N"] for x in c)
+        check(rel(top, FY * AREA) < 1e-9, "dx = %s m: largest load %.6f N, f_y A_s = %.6f N" % (dx, top, FY * AREA))
+        check(rel(c[-1]["load_N"], FY * AREA) < 1e-9 and c[-1]["yielded_segments"] >= 1, "the last step holds at the yield force, %d segment(s) yielded"
+              % c[-1]["yielded_segments"])
+        check(abs(c[-1]["steel_stress_Pa"] - FY) < 1e-6 * FY, "largest steel stress %.6e Pa, f_y" % c[-1]["steel_stress_Pa"])
+        # the system is linear but for the one segment, so at the end it stores F_y^2 / 2K (K the initial
+        # stiffness) and the segment has dissipated F_y times its plastic elongation, u - F_y / K
+        k = c[0]["load_N"] / c[0]["disp_m"]
+        stored, dissipated = (FY * AREA) ** 2 / (2 * k), FY * AREA * (c[-1]["disp_m"] - FY * AREA / k)
+        check(rel(c[-1]["stored_J"], stored) < 1e-6, "stored %.6f J, F_y^2 / 2K = %.6f J (1e-6)" % (c[-1]["stored_J"], stored))
+        check(rel(c[-1]["dissipated_J"], dissipated) < 1e-6, "dissipated %.6f J, F_y (u - F_y / K) = %.6f J (1e-6)" % (
+            c[-1]["dissipated_J"], dissipated))
+    plain = run("bar_prism", "-pd_bar0_fy", "1e12")
+    check(plain.summary["bars"]["first_yield"] is None, "a bar that never yields reports no first yield")
+
+
+def mpi():
+    # Two ranks split the prism across the cut: the same curve as one rank.
+    opts = ["-pd_dx", "0.01", "-ksp_rtol", "1e-12"]
+    a, b = run("bar_prism", *opts).curve, run("bar_prism", *opts, ranks=2).curve
+    worst = max(abs(x["load_N"] - y["load_N"]) / (FY * AREA) for x, y in zip(a, b))
+    check(len(a) == len(b) and worst < 1e-9, "2 ranks reproduce one rank: largest load difference %.1e of f_y A_s" % worst)
+    check([x["yielded_segments"] for x in a] == [x["yielded_segments"] for x in b], "and the same yielded segments per step")
+
+
+if __name__ == "__main__":
+    {"axial": axial, "notch": notch, "mpi": mpi}[sys.argv[1]]()
