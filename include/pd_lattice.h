@@ -34,14 +34,16 @@ typedef struct {
   PetscReal *x;         /* [3*nlocal] positions */
   PetscInt  *material;  /* [nlocal] material index */
   PetscBool *hollow;    /* [nlocal] the node lies in a void (-pd_voidK_*): no bonds, pinned, in no region */
+  PetscBool *nofail;    /* [nlocal] the node lies in a no-fail zone (-pd_nofailK_*): its bonds stay elastic */
   PetscInt   nvoid;     /* nodes in voids (global) */
   PetscInt   reach;     /* largest offset along one axis within the horizon: ghost layers per side */
   PetscInt   nstencil;  /* neighbour offsets within the horizon, the node's own excluded */
   PetscInt  *stencil;   /* [4*nstencil] di, dj, dk and n2 = di^2 + dj^2 + dk^2, lexicographic in (di, dj, dk) */
 } PDLattice;
 
-/* The material of a bond without concrete (a bar's segment across a notch): elastic, coefficient 0. */
-#define PD_MATERIAL_NONE PD_MAX_MATERIALS
+/* The material of bonds that never damage: a bar's segment across a notch (coefficient 0), a perfect
+   bond's interface, a no-fail zone's bonds. Its law is elastic. */
+#define PD_MATERIAL_ELASTIC PD_MAX_MATERIALS
 
 /* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
    A bond between two ranks is held by both; each adds only to its own rows. */
@@ -77,7 +79,9 @@ void PDLatticeNodeIndices(const PDLattice *, PetscInt gid, PetscInt ijk[3]);
 PetscInt PDLatticeOffset(const PDLattice *, PetscInt k, PetscInt l, PetscInt d[3]);
 void     PDLatticeInterpolation(const PDLattice *, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n);
 /* The bar whose line holds the pair of nodes (global ids) as consecutive nodes, or -1. */
-PetscInt       PDBarOfPair(const PDScene *, const PDLattice *, PetscInt gi, PetscInt gj);
+PetscInt PDBarOfPair(const PDScene *, const PDLattice *, PetscInt gi, PetscInt gj);
+/* The bar whose line holds the node (global id) within its ends, or -1. */
+PetscInt       PDBarHoldingNode(const PDScene *, const PDLattice *, PetscInt gid);
 PetscErrorCode PDBondsSetUpBars(const PDScene *, const PDLattice *, PDBonds *);
 /* A bond's elastic axial stiffness (N per unit stretch): its concrete part and its bar segment's. */
 static inline PetscReal PDBondStiffness(const PDBonds *bd, PetscInt e) {

@@ -18,7 +18,7 @@ typedef struct {
   Vec              x_local;                   /* ghosted work vector for tangent products (created on first use) */
   PetscReal       *ka, *kb;                   /* per-bond tangent scalars; NULL while the tangent is constant */
   PetscReal       *kp;                        /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
-  PDLaw            law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_NONE */
+  PDLaw            law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_ELASTIC */
   PDSteel          steel[PD_MAX_BARS];        /* the steel of each bar */
   PetscBool        softening;                 /* some bond law softens or breaks: bonds carry history */
   PetscBool        gamg_after_icc;            /* ICC(0) failed on the tangent: algebraic multigrid from then on */

@@ -10,6 +10,7 @@
 #define PD_MAX_REGIONS 16
 #define PD_MAX_VOIDS 16
 #define PD_MAX_BARS 16
+#define PD_MAX_NOFAIL 16
 #define PD_NAME_LEN 256
 
 typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
@@ -88,8 +89,8 @@ typedef struct {
   PetscInt  normal; /* axis of the flat direction */
 } PDNotch;
 
-/* A void: a box or cylinder of the domain without material. Its nodes keep their lattice place (global
-   ids stay lattice indices) but get no bonds; they are pinned and left out of regions and output. */
+/* A void: a box or cylinder of the domain without material (the same shape describes a no-fail zone). Its nodes keep their lattice place
+   (global ids stay lattice indices) but get no bonds; they are pinned and left out of regions and output. */
 typedef struct {
   char       option[32];
   PDGeometry where;
@@ -107,6 +108,7 @@ typedef struct {
   PetscReal E, fy;     /* Pa */
   PetscReal hardening; /* post-yield tangent over E (0: perfectly plastic) */
   PetscReal rupture;   /* strain at which the bar breaks; 0: never */
+  PetscBool perfect;   /* interface bonds (bar node to concrete node) never fail (the thesis); else they are concrete */
 } PDBar;
 
 typedef struct {
@@ -157,14 +159,15 @@ typedef struct {
   PetscReal  lambda_max;        /* end of the load path */
   PetscReal  dlambda_min, dlambda_max;
   PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
-  PetscInt   nmaterials, nnotches, nregions, nvoids, nbars;
+  PetscInt   nmaterials, nnotches, nregions, nvoids, nbars, nnofail;
   PDMaterial material[PD_MAX_MATERIALS];
   PDNotch    notch[PD_MAX_NOTCHES];
   PDRegion   region[PD_MAX_REGIONS];
   PDVoid     voids[PD_MAX_VOIDS];
   PDBar      bar[PD_MAX_BARS];
-  PetscInt   load_region; /* region whose force or reaction is the curve's load */
-  PetscInt   disp_region; /* region whose mean displacement is the curve's displacement */
+  PDVoid     nofail[PD_MAX_NOFAIL]; /* no-fail zones: the bonds of their nodes stay elastic (Ness) */
+  PetscInt   load_region;           /* region whose force or reaction is the curve's load */
+  PetscInt   disp_region;           /* region whose mean displacement is the curve's displacement */
   PetscBool  has_cmod;
   PetscReal  cmod[6];          /* two gauge points */
   PetscInt   steps;            /* load steps */

@@ -23,7 +23,7 @@ def prism(model, dx):
                "-pd_region0_box", "0,0,0,0,0.1,0.1", "-pd_region0_dofs", "x,y,z", "-pd_region1_box", "0.4,0,0,0.4,0.1,0.1",
                "-pd_region1_dofs", "x,y,z", "-pd_region1_displacement", "0.002,0,0"]
     else:
-        geo = ["-pd_model", model, "-pd_thickness", "0.1", "-pd_domain", "0,0,0.4,0.1", "-pd_bar0_line", "0,0.05,0,0.4,0.05,0",
+        geo = ["-pd_model", model, "-pd_thickness", "0.1", "-pd_domain", "0,0,0.4,0.1", "-pd_bar0_line", "0,0.05,0.4,0.05",
                "-pd_bar0_count", "2", "-pd_bar0_diameter", repr(0.012 / math.sqrt(2)), "-pd_region0_box", "0,0,0,0.1",
                "-pd_region0_dofs", "x,y", "-pd_region1_box", "0.4,0,0.4,0.1", "-pd_region1_dofs", "x,y", "-pd_region1_displacement", "0.002,0"]
     return ["-pd_name", "prism", "-pd_dx", dx, "-pd_E", "1e3", "-pd_law", "elastic", "-pd_region0_kind", "support", "-pd_region1_kind",

@@ -36,6 +36,21 @@ PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, Petsc
   return -1;
 }
 
+PetscInt PDBarHoldingNode(const PDScene *sc, const PDLattice *lat, PetscInt gid) {
+  PetscInt p[3];
+
+  PDLatticeNodeIndices(lat, gid, p);
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    const PDBar *b = &sc->bar[k];
+    PetscInt     line[3], first, last;
+    PetscBool    on = PETSC_TRUE;
+    NodeLine(lat, b, line, &first, &last);
+    for (PetscInt c = 0; c < 3 && on; c++) on = c == b->axis ? (p[c] >= first && p[c] <= last) : p[c] == line[c];
+    if (on) return k;
+  }
+  return -1;
+}
+
 PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds *bd) {
   PetscInt mine = 0, n = 0;
 

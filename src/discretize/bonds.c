@@ -194,6 +194,17 @@ static PetscErrorCode CheckOnePiece(const PDScene *sc, const PDLattice *lat, con
   }
 }
 
+/* Bonds whose concrete stays elastic: to a node in a no-fail zone (Ness), or between a node of a bar with
+   perfect bond and a concrete node (the interface bonds of the thesis, which never fail). */
+static PetscBool NeverDamages(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j) {
+  PetscInt ki, kj;
+  if (lat->nofail[i] || lat->nofail[j]) return PETSC_TRUE;
+  if (!sc->nbars) return PETSC_FALSE;
+  ki = PDBarHoldingNode(sc, lat, lat->gid[i]);
+  kj = PDBarHoldingNode(sc, lat, lat->gid[j]);
+  return (ki >= 0) != (kj >= 0) && sc->bar[ki >= 0 ? ki : kj].perfect ? PETSC_TRUE : PETSC_FALSE;
+}
+
 PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd) {
   PairList   pl = {NULL, NULL, 0, 0};
   PetscInt   ncut_local, nonce = 0;
@@ -226,10 +237,11 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     beta[e]         = PDFamilyPartialVolume(sc->horizon_ratio, n2, sc->partial_volume);
     bd->coef[e] = c0[m] * PDInfluenceValue(sc->influence, PetscSqrtReal((PetscReal)n2), sc->horizon_ratio) * beta[e] * lat->cell_volume *
                   lat->cell_volume;
+    if (NeverDamages(sc, lat, i, j)) bd->material[e] = PD_MATERIAL_ELASTIC;
     if (bar_only) { /* its neighbour counts in the family volume as cut already (cut_volume) */
       beta[e]         = 0;
       bd->coef[e]     = 0;
-      bd->material[e] = PD_MATERIAL_NONE;
+      bd->material[e] = PD_MATERIAL_ELASTIC;
     }
     if (PDBondCountedHere(lat, bd, e)) nonce++;
   }

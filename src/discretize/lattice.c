@@ -92,6 +92,7 @@ PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
   PetscInt    layer, g[4], nvoid = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
+  PetscInt    innofail_mine[PD_MAX_NOFAIL] = {0}, innofail[PD_MAX_NOFAIL];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(lat, sizeof *lat));
@@ -123,7 +124,8 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   GhostRanges(lat, g);
   lat->nghost = (g[1] - g[0]) + (g[3] - g[2]);
   lat->nlocal = lat->nowned + lat->nghost;
-  PetscCall(PetscMalloc4(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material, lat->nlocal, &lat->hollow));
+  PetscCall(PetscMalloc5(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material, lat->nlocal, &lat->hollow,
+                         lat->nlocal, &lat->nofail));
   for (PetscInt id = g[0]; id < g[3]; id++) {
     const PetscInt l = PDLatticeLocalIndex(lat, id);
     lat->gid[l]      = id;
@@ -143,6 +145,12 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
         if (l < lat->nowned) invoid_mine[v]++;
       }
     if (l < lat->nowned && lat->hollow[l]) nvoid++;
+    lat->nofail[l] = PETSC_FALSE;
+    for (PetscInt v = 0; v < sc->nnofail; v++)
+      if (PDGeometryContains(&sc->nofail[v].where, &lat->x[3 * l], sc)) {
+        lat->nofail[l] = PETSC_TRUE;
+        if (l < lat->nowned) innofail_mine[v]++;
+      }
   }
   PetscCall(MPIU_Allreduce(&nvoid, &lat->nvoid, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(invoid_mine, invoid, PD_MAX_VOIDS, MPIU_INT, MPI_SUM, comm));
@@ -151,12 +159,16 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
                "Option %s_%s: the void contains no node (it must hold at least one node's cell centre)", sc->voids[v].option,
                sc->voids[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
   PetscCheck(lat->nvoid < lat->nglobal, comm, PETSC_ERR_USER_INPUT, "Options -pd_void*: the voids leave no material in the domain");
+  PetscCall(MPIU_Allreduce(innofail_mine, innofail, PD_MAX_NOFAIL, MPIU_INT, MPI_SUM, comm));
+  for (PetscInt v = 0; v < sc->nnofail; v++)
+    PetscCheck(innofail[v] > 0, comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the no-fail zone contains no node", sc->nofail[v].option,
+               sc->nofail[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscFunctionBeginUser;
-  PetscCall(PetscFree4(lat->gid, lat->x, lat->material, lat->hollow));
+  PetscCall(PetscFree5(lat->gid, lat->x, lat->material, lat->hollow, lat->nofail));
   PetscCall(PetscFree(lat->stencil));
   PetscFunctionReturn(0);
 }

@@ -123,7 +123,7 @@ static void UnusedMessage(const char *given, const PDScene *sc, char *msg, size_
   n = s->family == PD_FAMILY_NONE ? 0 : PDSchemaFamilyCount(s->family, sc);
   if (s->family != PD_FAMILY_NONE && k >= n && !(s->family == PD_FAMILY_MATERIAL && k == 0)) {
     PDSchemaFamily(s->family, &prefix, &noun, &nouns, NULL, NULL);
-    if (s->family == PD_FAMILY_REGION || s->family == PD_FAMILY_VOID)
+    if (s->family == PD_FAMILY_REGION || s->family == PD_FAMILY_VOID || s->family == PD_FAMILY_NOFAIL)
       snprintf(what, sizeof what, "%s%d_box or %s%d_cylinder", prefix, (int)n, prefix, (int)n);
     else if (s->family == PD_FAMILY_BAR)
       snprintf(what, sizeof what, "%s%d_line", prefix, (int)n);

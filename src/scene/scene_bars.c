@@ -15,16 +15,20 @@ static PetscErrorCode BarReal(PetscOptionItems *PetscOptionsObject, PDScene *sc,
 static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
   PDBar    *b = &sc->bar[k];
   char      opt[64];
-  PetscInt  n = 6, nmove = 0;
+  PetscInt  n = 6, nmove = 0, d = sc->dim;
+  PetscReal v[6] = {0, 0, 0, 0, 0, 0};
   PetscBool set;
 
   PetscFunctionBeginUser;
   PetscCall(PetscSNPrintf(b->option, sizeof b->option, "-pd_bar%" PetscInt_FMT, k));
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_line", b->option));
-  PetscCall(PDOptionRealArray(PetscOptionsObject, sc, opt, b->line, &n, &set));
-  PetscCheck(n == 6, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected 6 numbers (x,y,z of each end), got %" PetscInt_FMT, opt,
-             n);
-  if (sc->dim == 2) b->line[2] = b->line[5] = 0;
+  PetscCall(PDOptionRealArray(PetscOptionsObject, sc, opt, v, &n, &set));
+  PetscCheck(n == 2 * d, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: expected %" PetscInt_FMT " numbers (%s of each end), got %" PetscInt_FMT, opt, 2 * d, d == 3 ? "x,y,z" : "x,y", n);
+  for (PetscInt a = 0; a < d; a++) {
+    b->line[a]     = v[a];
+    b->line[3 + a] = v[d + a];
+  }
   for (PetscInt a = 0; a < sc->dim; a++) {
     const PetscReal lo = PetscMin(b->line[a], b->line[3 + a]), hi = PetscMax(b->line[a], b->line[3 + a]);
     if (hi - lo > 1e-9 * sc->dx) {
@@ -50,6 +54,12 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
   PetscCall(BarReal(PetscOptionsObject, sc, b, "_fy", &b->fy));
   PetscCall(BarReal(PetscOptionsObject, sc, b, "_hardening", &b->hardening));
   PetscCall(BarReal(PetscOptionsObject, sc, b, "_rupture", &b->rupture));
+  {
+    PetscInt bond = 0;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_bond", b->option));
+    PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &bond, NULL));
+    b->perfect = bond == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCheck(b->rupture == 0 || b->rupture > b->fy / b->E, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option %s_rupture: the rupture strain lies above the yield strain f_y/E = %g, got %g", b->option, (double)(b->fy / b->E),
              (double)b->rupture);

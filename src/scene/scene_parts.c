@@ -295,6 +295,13 @@ PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *s
     sc->nvoids = k + 1;
     PetscCall(ReadVoid(PetscOptionsObject, sc, k));
   }
+  for (PetscInt k = 0; k < PD_MAX_NOFAIL; k++) {
+    PetscCall(HasShape("-pd_nofail", k, &has));
+    if (!has) break;
+    sc->nnofail = k + 1;
+    PetscCall(PetscSNPrintf(sc->nofail[k].option, sizeof sc->nofail[k].option, "-pd_nofail%" PetscInt_FMT, k));
+    PetscCall(ReadShape(PetscOptionsObject, sc, sc->nofail[k].option, &sc->nofail[k].where));
+  }
   PetscCheck(sc->nregions > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option -pd_region0_box: the scene defines no node regions (supports and loads)");
   PetscFunctionReturn(0);

@@ -3,7 +3,8 @@
 #pragma once
 #include "pd_scene.h"
 
-/* Materials, notches and node regions (-pd_materialK_*, -pd_notchK_*, -pd_regionK_*). */
+/* Materials, notches, node regions, voids and no-fail zones (-pd_materialK_*, -pd_notchK_*, -pd_regionK_*,
+   -pd_voidK_*, -pd_nofailK_*). */
 PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *);
 /* Steel bars (-pd_barK_*). */
 PetscErrorCode PDSceneReadBars(PetscOptionItems *PetscOptionsObject, PDScene *);

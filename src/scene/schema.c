@@ -15,6 +15,7 @@ static const struct {
     [PD_FAMILY_REGION]   = {"-pd_region", "region", "regions", 0, PD_MAX_REGIONS - 1},
     [PD_FAMILY_VOID]     = {"-pd_void", "void", "voids", 0, PD_MAX_VOIDS - 1},
     [PD_FAMILY_BAR]      = {"-pd_bar", "bar", "bars", 0, PD_MAX_BARS - 1},
+    [PD_FAMILY_NOFAIL]   = {"-pd_nofail", "no-fail zone", "no-fail zones", 0, PD_MAX_NOFAIL - 1},
 };
 
 void PDSchemaFamily(PDOptionFamily f, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last) {
@@ -146,6 +147,8 @@ PetscInt PDSchemaFamilyCount(PDOptionFamily f, const PDScene *sc) {
     return sc->nvoids;
   case PD_FAMILY_BAR:
     return sc->nbars;
+  case PD_FAMILY_NOFAIL:
+    return sc->nnofail;
   default:
     return 1;
   }
@@ -158,7 +161,9 @@ PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
   const PetscBool   linear   = path && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
   const PDMaterial *mat      = &sc->material[s->family == PD_FAMILY_MATERIAL ? k : 0];
   const PDRegion   *reg      = &sc->region[s->family == PD_FAMILY_REGION ? k : 0];
-  const PDGeometry *shape    = s->family == PD_FAMILY_VOID && k >= 0 && k < PD_MAX_VOIDS ? &sc->voids[k].where : &reg->where;
+  const PDGeometry *shape    = s->family == PD_FAMILY_VOID && k >= 0 && k < PD_MAX_VOIDS      ? &sc->voids[k].where
+                               : s->family == PD_FAMILY_NOFAIL && k >= 0 && k < PD_MAX_NOFAIL ? &sc->nofail[k].where
+                                                                                              : &reg->where;
 
   if (s->family != PD_FAMILY_NONE && (k < 0 || k >= PDSchemaFamilyCount(s->family, sc))) return PETSC_FALSE;
   switch (s->when) {

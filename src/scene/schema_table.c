@@ -5,12 +5,14 @@
 static const char *const Forms[]  = {"zaccariotto", "bobaru", NULL};
 static const char *const Solves[] = {"bordering", "augmented", NULL};
 static const char *const Axes[]   = {"x", "y", "z", NULL};
+static const char *const Bonds[]  = {"concrete", "perfect", NULL};
 
 #define MAT PD_FAMILY_MATERIAL
 #define NOTCH PD_FAMILY_NOTCH
 #define REGION PD_FAMILY_REGION
 #define HOLE PD_FAMILY_VOID
 #define BAR PD_FAMILY_BAR
+#define NOFAIL PD_FAMILY_NOFAIL
 
 const PDOptionSpec PDOptionSchema[] = {
     /* scene and body */
@@ -270,8 +272,9 @@ const PDOptionSpec PDOptionSchema[] = {
      .type     = PD_OPTION_REALS,
      .unit     = "m",
      .def_note = "required",
-     .help     = "Steel bar: its end points x,y,z,x,y,z, different along one lattice axis only; laid on the nearest line of nodes, whose "
-                 "consecutive pairs carry the bar's segments (perfect bond)"},
+     .help = "Steel bar: its end points x,y,z,x,y,z (x,y,x,y in 2D), different along one lattice axis only; laid on the nearest line of "
+             "nodes, whose "
+             "consecutive pairs carry the bar's segments (perfect bond)"},
     {.name     = "_diameter",
      .family   = BAR,
      .type     = PD_OPTION_REAL,
@@ -311,6 +314,34 @@ const PDOptionSpec PDOptionSchema[] = {
      .def    = "0",
      .range  = "[0, inf)",
      .help   = "Strain at which a segment of the bar breaks for good, above the yield strain; 0: never"},
+    {.name   = "_bond",
+     .family = BAR,
+     .type   = PD_OPTION_ENUM,
+     .values = Bonds,
+     .def    = "concrete",
+     .help   = "Bond of bar and concrete: concrete (the bonds from the bar's nodes to concrete nodes follow the concrete law and may crack "
+               "along the bar) or perfect (those bonds stay elastic, the thesis' choice; across a crack they carry tension too)"},
+    /* no-fail zones */
+    {.name     = "_box",
+     .family   = NOFAIL,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "this or _cylinder",
+     .help     = "No-fail zone (Ness): a box whose nodes' bonds stay elastic, so that loads and supports do not crack the concrete "
+                 "locally"},
+    {.name     = "_cylinder",
+     .family   = NOFAIL,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "this or _box",
+     .help     = "No-fail zone: a cylinder, as a point on its axis x,y,z and radius (the axis from _axis)"},
+    {.name   = "_axis",
+     .family = NOFAIL,
+     .type   = PD_OPTION_ENUM,
+     .values = Axes,
+     .def    = "z",
+     .when   = PD_WHEN_CYLINDER,
+     .help   = "Axis of a cylinder no-fail zone (z in 2D)"},
     /* load path and curve */
     {.name     = "-pd_load_region",
      .type     = PD_OPTION_INT,
