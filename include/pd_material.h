@@ -64,7 +64,6 @@ void PDSteelSetUp(const PDBar *, PDSteel *);
    tangent over E A: 1 elastic, h plastic, 0 broken) and the state it leaves (sp, broken). */
 void PDSteelResponse(const PDSteel *, PetscReal s, PetscReal sp_n, PetscBool broken_n, PetscReal *g, PetscReal *gp, PetscReal *sp,
                      PetscBool *broken);
-/* Energy per unit E A and unit length at stretch s and plastic stretch sp: stored (elastic and hardening),
-   and dissipated by plastic flow, s_y |sp| (exact for paths that do not reverse plastic flow). */
+/* Energy per unit E A and unit length at stretch s and plastic stretch sp: stored, elastic and in the
+   hardening, (s - sp)^2 / 2 + H sp^2 / 2. Plastic flow dissipates s_y per unit of accumulated |d sp|. */
 PetscReal PDSteelStored(const PDSteel *, PetscReal s, PetscReal sp);
-PetscReal PDSteelDissipated(const PDSteel *, PetscReal sp);

@@ -23,36 +23,38 @@ typedef struct {
   PetscBool        softening;                 /* some bond law softens or breaks: bonds carry history */
   PetscBool        gamg_after_icc;            /* ICC(0) failed on the tangent: algebraic multigrid from then on */
   /* per-bond history, allocated only when softening */
-  PetscReal     *kappa;                         /* largest stretch reached, committed at accepted steps */
-  unsigned char *level;                         /* PDBondLevel the limiter allows the bond to reach */
-  unsigned char *level_n;                       /* levels at the last accepted step, to restart a step */
-  PDLawBond     *thr;                           /* per-bond thresholds (critical-stretch correction), or NULL */
-  PetscReal     *stretch;                       /* per-bond scratch of the limiter and the history update */
-  unsigned char *branch;                        /* path following: per-bond PDBranch frozen for a stage, or NULL */
-  PetscInt       limiter_max;                   /* bond events granted per Newton iteration; 0: no cap */
-  PetscBool      commit_history;                /* explicit path: every force evaluation raises kappa */
-  PetscReal     *sp_n;                          /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
-  PetscBool     *ruptured_n;                    /* [nseg] the segment has broken (committed) */
-  PetscInt       yielded;                       /* bar segments with plastic stretch, or broken (global, counted once) */
-  PetscInt       broken;                        /* bonds broken (global, counted once) at the last accepted step */
-  PetscInt       softening_bonds;               /* bonds on the softening branch, not broken (global) */
-  PetscInt       nregularised, max_regularised; /* free dofs left without stiffness by damage */
-  Vec            f_ref;                         /* external force at load factor 1 (global) */
-  Vec            u_ref;                         /* prescribed displacement at load factor 1 (global, zero on free dofs) */
-  Vec            fixed;                         /* 1 on constrained dofs, 0 elsewhere (global) */
-  PetscBool     *fixed_local;                   /* [bs*nlocal] constrained flags including ghosts */
-  PetscReal     *uref_local;                    /* [bs*nlocal] prescribed values at load factor 1 including ghosts */
-  Vec            load_pattern;                  /* unit direction on the load region's nodes */
-  Vec            disp_pattern;                  /* unit direction / count on the displacement region's nodes */
-  Vec            cmod_pattern;                  /* -e on gauge point 1, +e on gauge point 2 */
-  Vec            f_work;                        /* internal force for measurements (global) */
-  PetscReal      force_magnitude;
-  PetscInt       nconstrained;  /* global constrained dofs */
-  PetscInt       nisolated;     /* global nodes without any bond, pinned */
-  PetscInt       nzero_dofs;    /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
-  PetscInt64     history_bytes; /* per-bond history storage allocated (0 for elastic scenes) */
-  PetscInt       jacobian_assemblies;
-  PetscReal      t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
+  PetscReal     *kappa;                     /* largest stretch reached, committed at accepted steps */
+  unsigned char *level;                     /* PDBondLevel the limiter allows the bond to reach */
+  unsigned char *level_n;                   /* levels at the last accepted step, to restart a step */
+  PDLawBond     *thr;                       /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscReal     *stretch;                   /* per-bond scratch of the limiter and the history update */
+  unsigned char *branch;                    /* path following: per-bond PDBranch frozen for a stage, or NULL */
+  PetscInt       limiter_max;               /* bond events granted per Newton iteration; 0: no cap */
+  PetscBool      commit_history;            /* explicit path: every force evaluation raises kappa */
+  PetscReal     *sp_n;                      /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
+  PetscBool     *ruptured_n;                /* [nseg] the segment has broken (committed) */
+  PetscReal     *dissipated_n;              /* [nseg] energy the segment dissipated (J): s_y E A L0 times its accumulated
+                                               plastic stretch, and the elastic energy it held when it broke */
+  PetscInt   yielded;                       /* bar segments with plastic stretch, or broken (global, counted once) */
+  PetscInt   broken;                        /* bonds broken (global, counted once) at the last accepted step */
+  PetscInt   softening_bonds;               /* bonds on the softening branch, not broken (global) */
+  PetscInt   nregularised, max_regularised; /* free dofs left without stiffness by damage */
+  Vec        f_ref;                         /* external force at load factor 1 (global) */
+  Vec        u_ref;                         /* prescribed displacement at load factor 1 (global, zero on free dofs) */
+  Vec        fixed;                         /* 1 on constrained dofs, 0 elsewhere (global) */
+  PetscBool *fixed_local;                   /* [bs*nlocal] constrained flags including ghosts */
+  PetscReal *uref_local;                    /* [bs*nlocal] prescribed values at load factor 1 including ghosts */
+  Vec        load_pattern;                  /* unit direction on the load region's nodes */
+  Vec        disp_pattern;                  /* unit direction / count on the displacement region's nodes */
+  Vec        cmod_pattern;                  /* -e on gauge point 1, +e on gauge point 2 */
+  Vec        f_work;                        /* internal force for measurements (global) */
+  PetscReal  force_magnitude;
+  PetscInt   nconstrained;  /* global constrained dofs */
+  PetscInt   nisolated;     /* global nodes without any bond, pinned */
+  PetscInt   nzero_dofs;    /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
+  PetscInt64 history_bytes; /* per-bond history storage allocated (0 for elastic scenes) */
+  PetscInt   jacobian_assemblies;
+  PetscReal  t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
 } PDModel;
 
 /* A softened bond's force has a kink at its largest stretch (softening beyond it, secant below it), and

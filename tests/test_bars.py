@@ -65,6 +65,14 @@ def notch():
         check(rel(c[-1]["stored_J"], stored) < 1e-6, "stored %.6f J, F_y^2 / 2K = %.6f J (1e-6)" % (c[-1]["stored_J"], stored))
         check(rel(c[-1]["dissipated_J"], dissipated) < 1e-6, "dissipated %.6f J, F_y (u - F_y / K) = %.6f J (1e-6)" % (
             c[-1]["dissipated_J"], dissipated))
+    # a cut through a plane of nodes keeps only the bonds within the plane there (the notch rule), so the
+    # plane's 25 nodes have no stiffness across it and that dof is pinned, but for the bar's node, which
+    # its segments hold: 24 pinned dofs, and the two halves still hang on the bar
+    r = run("bar_prism", "-pd_notch0_box", "0.21,-0.01,-0.01,0.21,0.11,0.11", "-ksp_rtol", "1e-12")
+    s = r.summary
+    check(s["zero_stiffness_dofs_pinned"] == 24 and s["constrained_dofs"] == 150 + 24, "cut through a node plane: %d dofs pinned (24), "
+          "%d constrained (the two faces' 150 and those)" % (s["zero_stiffness_dofs_pinned"], s["constrained_dofs"]))
+    check(rel(max(x["load_N"] for x in r.curve), FY * AREA) < 1e-9, "and the largest load is f_y A_s")
     plain = run("bar_prism", "-pd_bar0_fy", "1e12")
     check(plain.summary["bars"]["first_yield"] is None, "a bar that never yields reports no first yield")
 

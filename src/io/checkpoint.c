@@ -36,7 +36,10 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
     if (!PDBondCountedHere(m->lat, bd, e)) continue;
     mine[0] += PDBondStiffness(bd, e);
     if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc;
-    if (bd->seg && bd->seg[e] >= 0) mine[1] += m->steel[bd->seg_bar[bd->seg[e]]].sy;
+    if (bd->seg && bd->seg[e] >= 0) {
+      const PDSteel *st = &m->steel[bd->seg_bar[bd->seg[e]]];
+      mine[1] += st->sy + st->h + (st->su < PETSC_MAX_REAL ? st->su : 0);
+    }
   }
   PetscCall(MPIU_Allreduce(mine, sum, 2, MPIU_REAL, MPI_SUM, m->lat->comm));
   fp[0] = (PetscReal)m->lat->nglobal;
@@ -53,6 +56,9 @@ static const char *const total_names[] = {"steps", "newton_its", "ksp_its", "max
 #define PD_KAPPA_MAX 1e6
 
 static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level);
+/* bar segments: plastic stretch, rupture (0 or 1), dissipated energy (J), over the same entries */
+static const char *const steel_names[] = {"steel_plastic_stretch", "steel_ruptured", "steel_dissipated"};
+static PetscErrorCode    SteelVecs(const PDModel *m, Vec v[3]);
 
 /* Whether every rank's values pass (collective). */
 static PetscErrorCode AllPass(MPI_Comm comm, PetscBool mine, PetscBool *all) {
@@ -139,6 +145,21 @@ static PetscErrorCode CheckValues(const PDModel *m, PetscViewer v, PetscInt nvec
   if (!ok) {
     PetscCall(PetscSNPrintf(bad, len, "its curve rows are not finite"));
     PetscFunctionReturn(0);
+  }
+  if (m->scene->nbars) {
+    Vec s[3];
+    PetscCall(SteelVecs(m, s));
+    for (PetscInt k = 0; k < 3; k++) {
+      PetscCall(PetscViewerHDF5HasDataset(v, steel_names[k], &ok));
+      if (ok) PetscCall(VecLoad(s[k], v));
+      if (ok) PetscCall(VecInRange(s[k], k == 2 ? 0 : -PD_KAPPA_MAX, k == 1 ? 1 : PD_KAPPA_MAX, 0, -1, &ok));
+      PetscCall(VecDestroy(&s[k]));
+      if (!ok) {
+        PetscCall(PetscSNPrintf(bad, len, "its %s is missing, not finite or out of range", steel_names[k]));
+        for (PetscInt l = k + 1; l < 3; l++) PetscCall(VecDestroy(&s[l]));
+        PetscFunctionReturn(0);
+      }
+    }
   }
   if (!m->softening) PetscFunctionReturn(0);
   PetscCall(HistoryVecs(m, &x, &y));
@@ -264,55 +285,59 @@ static void RowUnpack(const PetscScalar *a, PDCurveRow *r) {
 }
 
 /* The state of the bar segments over the same incidence entries (0 where a bond has none): plastic
-   stretch, and 1 for a broken segment. */
-static PetscErrorCode WriteSteel(const PDModel *m, PetscViewer v) {
-  const PDBonds *bd = m->bonds;
-  Vec            S, R;
-  PetscScalar   *s, *r;
-
+   stretch, 1 for a broken segment, and the energy the segment has dissipated. */
+static PetscErrorCode SteelVecs(const PDModel *m, Vec v[3]) {
   PetscFunctionBeginUser;
-  PetscCall(HistoryVecs(m, &S, &R));
-  PetscCall(PetscObjectSetName((PetscObject)S, "steel_plastic_stretch"));
-  PetscCall(PetscObjectSetName((PetscObject)R, "steel_ruptured"));
-  PetscCall(VecGetArray(S, &s));
-  PetscCall(VecGetArray(R, &r));
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt sg = bd->seg[bd->inc_bond[p]];
-    s[p]              = sg >= 0 ? m->sp_n[sg] : 0;
-    r[p]              = sg >= 0 && m->ruptured_n[sg] ? 1 : 0;
-  }
-  PetscCall(VecRestoreArray(S, &s));
-  PetscCall(VecRestoreArray(R, &r));
-  PetscCall(VecView(S, v));
-  PetscCall(VecView(R, v));
-  PetscCall(VecDestroy(&S));
-  PetscCall(VecDestroy(&R));
+  PetscCall(HistoryVecs(m, &v[0], &v[1]));
+  PetscCall(VecDuplicate(v[0], &v[2]));
+  for (PetscInt k = 0; k < 3; k++) PetscCall(PetscObjectSetName((PetscObject)v[k], steel_names[k]));
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadSteel(PDModel *m, PetscViewer v) {
-  const PDBonds     *bd = m->bonds;
-  Vec                S, R;
-  const PetscScalar *s, *r;
+static PetscErrorCode WriteSteel(const PDModel *m, PetscViewer viewer) {
+  const PDBonds *bd = m->bonds;
+  Vec            v[3];
+  PetscScalar   *a[3];
 
   PetscFunctionBeginUser;
-  PetscCall(HistoryVecs(m, &S, &R));
-  PetscCall(PetscObjectSetName((PetscObject)S, "steel_plastic_stretch"));
-  PetscCall(PetscObjectSetName((PetscObject)R, "steel_ruptured"));
-  PetscCall(VecLoad(S, v));
-  PetscCall(VecLoad(R, v));
-  PetscCall(VecGetArrayRead(S, &s));
-  PetscCall(VecGetArrayRead(R, &r));
+  PetscCall(SteelVecs(m, v));
+  for (PetscInt k = 0; k < 3; k++) PetscCall(VecGetArray(v[k], &a[k]));
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
+    const PetscInt sg = bd->seg[bd->inc_bond[p]];
+    a[0][p]           = sg >= 0 ? m->sp_n[sg] : 0;
+    a[1][p]           = sg >= 0 && m->ruptured_n[sg] ? 1 : 0;
+    a[2][p]           = sg >= 0 ? m->dissipated_n[sg] : 0;
+  }
+  for (PetscInt k = 0; k < 3; k++) {
+    PetscCall(VecRestoreArray(v[k], &a[k]));
+    PetscCall(VecView(v[k], viewer));
+    PetscCall(VecDestroy(&v[k]));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ReadSteel(PDModel *m, PetscViewer viewer) {
+  const PDBonds     *bd = m->bonds;
+  Vec                v[3];
+  const PetscScalar *a[3];
+
+  PetscFunctionBeginUser;
+  PetscCall(SteelVecs(m, v));
+  for (PetscInt k = 0; k < 3; k++) {
+    PetscCall(VecLoad(v[k], viewer));
+    PetscCall(VecGetArrayRead(v[k], &a[k]));
+  }
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
     const PetscInt sg = bd->seg[bd->inc_bond[p]];
     if (sg < 0) continue;
-    m->sp_n[sg]       = PetscRealPart(s[p]);
-    m->ruptured_n[sg] = PetscRealPart(r[p]) > 0.5 ? PETSC_TRUE : PETSC_FALSE;
+    m->sp_n[sg]         = PetscRealPart(a[0][p]);
+    m->ruptured_n[sg]   = PetscRealPart(a[1][p]) > 0.5 ? PETSC_TRUE : PETSC_FALSE;
+    m->dissipated_n[sg] = PetscRealPart(a[2][p]);
   }
-  PetscCall(VecRestoreArrayRead(S, &s));
-  PetscCall(VecRestoreArrayRead(R, &r));
-  PetscCall(VecDestroy(&S));
-  PetscCall(VecDestroy(&R));
+  for (PetscInt k = 0; k < 3; k++) {
+    PetscCall(VecRestoreArrayRead(v[k], &a[k]));
+    PetscCall(VecDestroy(&v[k]));
+  }
   PetscCall(PDModelCountDamage(m));
   PetscFunctionReturn(0);
 }

@@ -29,7 +29,3 @@ PetscReal PDSteelStored(const PDSteel *st, PetscReal s, PetscReal sp) {
   const PetscReal H = st->h / (1 - st->h);
   return 0.5 * (s - sp) * (s - sp) + 0.5 * H * sp * sp;
 }
-
-PetscReal PDSteelDissipated(const PDSteel *st, PetscReal sp) {
-  return st->sy * PetscAbsReal(sp);
-}

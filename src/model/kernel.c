@@ -165,9 +165,11 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
       PetscReal      g, gp, sp;
       PetscBool      rupt;
       SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
-      /* a broken segment keeps what it dissipated; its elastic energy went with the break */
+      /* the committed dissipation and what reaching s adds: plastic flow, or the elastic energy a break releases */
       if (!rupt) es += bd->seg_coef[sg] * L0 * PDSteelStored(st, s, sp);
-      ed += bd->seg_coef[sg] * L0 * PDSteelDissipated(st, sp);
+      ed += m->dissipated_n[sg] +
+            bd->seg_coef[sg] * L0 *
+                (rupt && !m->ruptured_n[sg] ? PDSteelStored(st, s, m->sp_n[sg]) : st->sy * PetscAbsReal(sp - m->sp_n[sg]));
     }
     if (!m->softening || m->law[bd->material[e]].kind == PD_LAW_ELASTIC) {
       es += 0.5 * c * s * s * L0;
@@ -336,8 +338,22 @@ void PDModelCommitBond(PDModel *m, PetscInt e, PetscReal s) {
 }
 
 void PDModelCommitSegment(PDModel *m, PetscInt sg, PetscReal s) {
-  PetscReal g, gp;
-  SegmentForce(m, sg, s, &g, &gp, &m->sp_n[sg], &m->ruptured_n[sg]);
+  const PDBonds   *bd = m->bonds;
+  const PDSteel   *st = &m->steel[bd->seg_bar[sg]];
+  const PetscInt   e  = bd->seg_bond[sg];
+  const PetscReal *xa = &m->lat->x[3 * bd->a[e]], *xb = &m->lat->x[3 * bd->b[e]];
+  PetscReal        g, gp, sp, L0 = 0;
+  PetscBool        rupt;
+
+  for (PetscInt a = 0; a < 3; a++) L0 += (xb[a] - xa[a]) * (xb[a] - xa[a]);
+  L0 = PetscSqrtReal(L0);
+  SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
+  if (rupt && !m->ruptured_n[sg])
+    m->dissipated_n[sg] += bd->seg_coef[sg] * L0 * PDSteelStored(st, s, m->sp_n[sg]);
+  else
+    m->dissipated_n[sg] += bd->seg_coef[sg] * L0 * st->sy * PetscAbsReal(sp - m->sp_n[sg]);
+  m->sp_n[sg]       = sp;
+  m->ruptured_n[sg] = rupt;
 }
 
 /* Largest |stress| of the bar segments this rank holds: force over the bar's area (count pi d^2 / 4). */

@@ -44,7 +44,7 @@ static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[
     const PetscReal *xa = &lat->x[3 * bd->a[e]], *xb = &lat->x[3 * bd->b[e]];
     PetscReal        L2 = 0;
     for (PetscInt a = 0; a < 3; a++) L2 += (xb[a] - xa[a]) * (xb[a] - xa[a]);
-    for (PetscInt a = 0; a < m->bs; a++) diag[a] += bd->coef[e] / PetscSqrtReal(L2) * (xb[a] - xa[a]) * (xb[a] - xa[a]) / L2;
+    for (PetscInt a = 0; a < m->bs; a++) diag[a] += PDBondStiffness(bd, e) / PetscSqrtReal(L2) * (xb[a] - xa[a]) * (xb[a] - xa[a]) / L2;
   }
 }
 
@@ -213,7 +213,7 @@ static PetscErrorCode SetupScale(PDModel *m) {
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscReal *p = &lat->x[3 * bd->a[e]], *q = &lat->x[3 * bd->b[e]];
     const PetscReal  L = PetscSqrtReal((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) + (q[2] - p[2]) * (q[2] - p[2]));
-    sum += (bd->b[e] < lat->nowned ? 2.0 : 1.0) * bd->coef[e] / L / m->bs;
+    sum += (bd->b[e] < lat->nowned ? 2.0 : 1.0) * bd->coef[e] / L / m->bs; /* the concrete's: bars are few */
   }
   PetscCall(MPIU_Allreduce(&sum, &gsum, 1, MPIU_REAL, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
@@ -290,8 +290,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     }
   }
   if (sc->nbars) {
-    PetscCall(PetscCalloc2(PetscMax(1, bd->nseg), &m->sp_n, PetscMax(1, bd->nseg), &m->ruptured_n));
-    m->history_bytes += (PetscInt64)bd->nseg * (sizeof(PetscReal) + sizeof(PetscBool));
+    PetscCall(
+        PetscCalloc3(PetscMax(1, bd->nseg), &m->sp_n, PetscMax(1, bd->nseg), &m->ruptured_n, PetscMax(1, bd->nseg), &m->dissipated_n));
+    m->history_bytes += (PetscInt64)bd->nseg * (2 * sizeof(PetscReal) + sizeof(PetscBool));
   }
   {
     PetscInt64 mine = m->history_bytes;
@@ -317,7 +318,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree(m->kp));
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->thr));
-  PetscCall(PetscFree2(m->sp_n, m->ruptured_n));
+  PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));
   PetscFunctionReturn(0);
 }
 

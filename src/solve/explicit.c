@@ -66,8 +66,8 @@ static PetscErrorCode Eq46TimeStep(PDModel *m, PetscReal *dt) {
     PetscReal      L = 0;
     for (PetscInt a = 0; a < 3; a++) L += (lat->x[3 * j + a] - lat->x[3 * i + a]) * (lat->x[3 * j + a] - lat->x[3 * i + a]);
     L = PetscSqrtReal(L);
-    k[i] += bd->coef[e] / L;
-    if (j < lat->nowned) k[j] += bd->coef[e] / L;
+    k[i] += PDBondStiffness(bd, e) / L;
+    if (j < lat->nowned) k[j] += PDBondStiffness(bd, e) / L;
   }
   for (PetscInt i = 0; i < lat->nowned; i++)
     if (k[i] > 0) dtmin = PetscMin(dtmin, PetscSqrtReal(2 * m->scene->material[lat->material[i]].rho * lat->cell_volume / k[i]));
@@ -463,6 +463,7 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   if (m->scene->nbars) {
     PetscCall(PetscArrayzero(m->sp_n, m->bonds->nseg));
     PetscCall(PetscArrayzero(m->ruptured_n, m->bonds->nseg));
+    PetscCall(PetscArrayzero(m->dissipated_n, m->bonds->nseg));
   }
   m->broken = 0;
   PetscCall(PDRecordClearRows(c->rec));

@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""The small reinforced beam (options/rc_beam_2d.opts) against cracked-section analysis: cracking and
+yield loads by hand, and pdimplicit's curves with the two bar bonds (concrete: the interface bonds follow
+the concrete law; perfect: they never fail, the thesis' choice), on the implicit path (secant tangent,
+which traces the whole curve) and the explicit one. Records each run's peak, the steel stress there,
+whether the bar yielded, and how far along the bar the concrete delaminated (bar-line nodes whose damage
+exceeds 0.5). Writes docs/benchmarks/rc_beam.json and rc_beam.md (a few minutes).
+
+Usage: benchmarks/rc_beam.py [--report]
+"""
+import csv
+import math
+import os
+import sys
+import tempfile
+
+from common import EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, load_results
+
+JSON = os.path.join(RESULTS_DIR, "rc_beam.json")
+SCENE = os.path.join(ROOT, "options", "rc_beam_2d.opts")
+
+# the scene's section and materials
+B, H, D, SPAN = 0.1, 0.15, 0.115, 1.2
+EC, ES, FT, FY, AS = 30e9, 200e9, 3e6, 500e6, math.pi * 0.008 ** 2 / 4
+
+# name, what, extra options
+CASES = [
+    ("concrete_implicit", "bond concrete, implicit (secant tangent)", ["-pd_tangent", "secant", "-pd_lambda_max", "0.25"]),
+    ("concrete_explicit", "bond concrete, explicit", ["-pd_mode", "explicit", "-pd_lambda_max", "0.25"]),
+    ("perfect_implicit", "bond perfect, implicit (secant tangent)", ["-pd_bar0_bond", "perfect", "-pd_tangent", "secant", "-pd_lambda_max", "0.25"]),
+]
+
+
+def section():
+    """Cracked-section analysis of three-point bending: cracking load from f_t W, yield load from the
+    elastic cracked section (n = E_s/E_c, neutral axis k d, lever arm (1 - k/3) d)."""
+    rho, n = AS / (B * D), ES / EC
+    k = math.sqrt(2 * rho * n + (rho * n) ** 2) - rho * n
+    my = AS * FY * (1 - k / 3) * D
+    mcr = FT * B * H * H / 6
+    return {"P_cr_N": 4 * mcr / SPAN, "P_y_N": 4 * my / SPAN, "k": k, "lever_arm_m": (1 - k / 3) * D}
+
+
+def delaminated(outdir):
+    """Length (m) of the bar's node line whose nodal damage exceeds 0.5 at the last fields written."""
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(outdir, "fields.h5"), "r") as f:
+        g = f["fields"]
+        key = sorted(k for k in g if k.startswith("damage_"))[-1]
+        x, d = np.array(g["coordinates"]), np.array(g[key]).ravel()
+    on = np.abs(x[:, 1] - 0.035) < 1e-9
+    return float(np.sum(d[on] > 0.5)) * 0.01
+
+
+def measure():
+    res = {"section": section(), "runs": {}}
+    for name, what, extra in CASES:
+        out = tempfile.mkdtemp(prefix="pdbench_")
+        with open(os.path.join(out, "log"), "w") as log:
+            code, wall, cpu, _ = run_timed([EXE, "-options_file", SCENE, "-pd_output_dir", out, *extra], 3600, log)
+        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(out, "curve.csv")))]
+        k = max(range(len(rows)), key=lambda i: rows[i]["load_N"])
+        first = next((r for r in rows if r["yielded_segments"] > 0), None)
+        status = open(os.path.join(out, "log")).read().strip().splitlines()[-1]
+        res["runs"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "status": status,
+                             "peak_N": rows[k]["load_N"], "disp_at_peak_m": rows[k]["disp_m"], "steel_stress_at_peak_Pa": rows[k]["steel_stress_Pa"],
+                             "first_yield_N": first["load_N"] if first else None, "broken_bonds": int(rows[-1]["broken_bonds"]),
+                             "delaminated_m": delaminated(out), "final_disp_m": rows[-1]["disp_m"]}
+        print(name, res["runs"][name])
+    save_results(JSON, res)
+
+
+def status(line):
+    """The run's last log line without the output folder, which differs between runs."""
+    line = line.strip().replace("pdimplicit: run stopped early: ", "stopped: ").replace("|", "/")
+    return line.split("; results in")[0].split(": results in")[0]
+
+
+def report():
+    res = load_results(JSON)
+    s = res["section"]
+    lines = ["# The small reinforced beam against cracked-section analysis", "",
+             "Written by `benchmarks/rc_beam.py` from `rc_beam.json`. `options/rc_beam_2d.opts`: 1300 x 150 mm, 100 mm thick "
+             "(plane stress), span 1200 mm, one 8 mm bar (f_y = 500 MPa) at d = 115 mm, three-point bending, dx = 10 mm, no-fail "
+             "zones at the supports and under the load. By hand: cracking at P_cr = 4 f_t W / L = %.0f N, yield of the bar at "
+             "P_y = 4 A_s f_y (1 - k/3) d / L = %.0f N (k = %.3f). Delaminated: length of the bar's node line whose nodes' damage "
+             "exceeds 0.5 at the end." % (s["P_cr_N"], s["P_y_N"], s["k"]), "",
+             "| run | peak (N) | peak / P_y | steel stress at the peak (MPa) | first yield (N) | broken bonds | delaminated (m) | CPU (s) | end |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for name, _, _ in CASES:
+        r = res["runs"][name]
+        lines.append("| %s | %.0f | %.2f | %.0f | %s | %d | %.2f | %.1f | %s |" % (
+            r["what"], r["peak_N"], r["peak_N"] / s["P_y_N"], r["steel_stress_at_peak_Pa"] / 1e6,
+            "%.0f" % r["first_yield_N"] if r["first_yield_N"] else "none", r["broken_bonds"], r["delaminated_m"], r["cpu_s"],
+            status(r["status"])))
+    lines += ["", "Commands: `build/pdimplicit -options_file options/rc_beam_2d.opts` with the options of each run:", ""]
+    lines += ["    %s" % " ".join(c[2]) for c in CASES]
+    open(os.path.join(OUT, "rc_beam.md"), "w").write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    if "--report" not in sys.argv[1:]:
+        measure()
+    report()
