@@ -6,7 +6,7 @@ which traces the whole curve) and the explicit one. Records each run's peak, the
 whether the bar yielded, and how far along the bar the concrete delaminated (bar-line nodes whose damage
 exceeds 0.5). Writes docs/benchmarks/rc_beam.json and rc_beam.md (a few minutes).
 
-Usage: benchmarks/rc_beam.py [--report]
+Usage: benchmarks/rc_beam.py [--report | CASE ...]   (CASE: run only these, keep the others' results)
 """
 import csv
 import math
@@ -26,6 +26,8 @@ EC, ES, FT, FY, AS = 30e9, 200e9, 3e6, 500e6, math.pi * 0.008 ** 2 / 4
 # name, what, extra options
 CASES = [
     ("concrete_implicit", "bond concrete, implicit (secant tangent)", ["-pd_tangent", "secant", "-pd_lambda_max", "0.25"]),
+    ("concrete_newton60", "bond concrete, implicit, Newton budget 60", ["-snes_max_it", "60", "-pd_control_fallback", "false",
+                                                                          "-pd_lambda_max", "0.2"]),
     ("concrete_explicit", "bond concrete, explicit", ["-pd_mode", "explicit", "-pd_lambda_max", "0.25"]),
     ("perfect_implicit", "bond perfect, implicit (secant tangent)", ["-pd_bar0_bond", "perfect", "-pd_tangent", "secant", "-pd_lambda_max", "0.25"]),
 ]
@@ -53,9 +55,13 @@ def delaminated(outdir):
     return float(np.sum(d[on] > 0.5)) * 0.01
 
 
-def measure():
-    res = {"section": section(), "runs": {}}
+def measure(names):
+    res = load_results(JSON)
+    res["section"] = section()
+    res.setdefault("runs", {})
     for name, what, extra in CASES:
+        if names and name not in names:
+            continue
         out = tempfile.mkdtemp(prefix="pdbench_")
         with open(os.path.join(out, "log"), "w") as log:
             code, wall, cpu, _ = run_timed([EXE, "-options_file", SCENE, "-pd_output_dir", out, *extra], 3600, log)
@@ -101,5 +107,5 @@ def report():
 
 if __name__ == "__main__":
     if "--report" not in sys.argv[1:]:
-        measure()
+        measure(sys.argv[1:])
     report()
