@@ -68,9 +68,11 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
   }
   /* equilibrium to 1e-6 of the increment's load residual on non-linear scenes: 1e-8 took more Newton
      iterations for the same curve (docs/benchmarks/solve_profile.md). The secant tangent converges
-     linearly: it gets up to 200 iterations per increment */
+     linearly: it gets up to 200 iterations per increment. Around a steel bar Newton cycles on the kinks
+     of the softening bonds for longer before it settles: bars raise the budget to 60
+     (docs/reinforcement.md) */
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
-                              m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : 20, -1));
+                              m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
   PetscCall(SNESSetFromOptions(snes));
   PetscFunctionReturn(0);
 }
