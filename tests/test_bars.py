@@ -1,6 +1,7 @@
 """Steel bars (-pd_barK_*): axial stiffness and yield force as built, a bar holding a cut prism, MPI.
-Usage: test_bars.py axial|notch|mpi"""
+Usage: test_bars.py axial|notch|mpi|restart"""
 import math
+import os
 import sys
 
 from pdtest import check, rel, run
@@ -86,5 +87,23 @@ def mpi():
     check([x["yielded_segments"] for x in a] == [x["yielded_segments"] for x in b], "and the same yielded segments per step")
 
 
+def restart():
+    # Path following on the cut prism stopped at load factor 0.5, after the segment across the cut has
+    # yielded (a finished run with -pd_checkpoint_every leaves a checkpoint); going on from there on 1 and
+    # 2 ranks retraces the uninterrupted run: the load, and the energy the steel dissipated, which needs
+    # the plastic stretch and the dissipation carried over.
+    opts = ["-pd_control", "arclength", "-pd_region1_displacement", "0.001,0,0", "-ksp_rtol", "1e-12"]
+    a = run("bar_prism", *opts).curve
+    half = run("bar_prism", *opts, "-pd_lambda_max", "0.5", "-pd_steps", "5", "-pd_checkpoint_every", "100")  # first step 0.1 as in the whole run
+    n = len(half.curve)
+    check(half.curve[-1]["yielded_segments"] >= 1 and 1 < n < len(a), "the checkpoint at step %d of %d has a yielded segment" % (n, len(a)))
+    for ranks in (1, 2):
+        b = run("bar_prism", *opts, "-pd_restart", os.path.join(half.dir, "checkpoint.h5"), ranks=ranks).curve
+        worst = max(max(abs(x[k] - y[k]) / max(abs(z[k]) for z in a) for k in ("load_N", "disp_m", "dissipated_J", "stored_J"))
+                    for x, y in zip(a, b))
+        check(len(a) == len(b) and worst < 1e-8, "%d rank(s): the restart retraces the %d steps, largest difference %.1e (1e-8)" % (
+            ranks, len(a), worst))
+
+
 if __name__ == "__main__":
-    {"axial": axial, "notch": notch, "mpi": mpi}[sys.argv[1]]()
+    {"axial": axial, "notch": notch, "mpi": mpi, "restart": restart}[sys.argv[1]]()
