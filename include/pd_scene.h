@@ -160,7 +160,8 @@ typedef struct {
   PetscReal  dlambda_min, dlambda_max;
   PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
   PetscInt   nmaterials, nnotches, nregions, nvoids, nbars, nnofail;
-  PDMaterial material[PD_MAX_MATERIALS];
+  PetscInt   nplates;                    /* bearing plates (-pd_plateK_*), kept as elastic materials after the nmaterials given */
+  PDMaterial material[PD_MAX_MATERIALS]; /* the materials given, then the plates' */
   PDNotch    notch[PD_MAX_NOTCHES];
   PDRegion   region[PD_MAX_REGIONS];
   PDVoid     voids[PD_MAX_VOIDS];

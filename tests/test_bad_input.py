@@ -66,6 +66,12 @@ CASES = [
     ("bar_prism", ["-pd_bar1_line", "0.1,0.05,0.05,0.3,0.05,0.05", "-pd_bar1_diameter", "0.01"], "-pd_bar1_line"),  # overlaps bar 0
     ("bar_prism", ["-pd_bar2_line", "0,0.03,0.03,0.4,0.03,0.03", "-pd_bar2_diameter", "0.01"], "-pd_bar2"),  # numbering gap
     ("cantilever", ["-pd_bar0_line", "0,0.05,0.05,1,0.05,0.05"], "-pd_bar0_diameter"),  # diameter missing
+    # no-fail zones and plates
+    ("cantilever", ["-pd_nofail0_box", "0.5005,0.0405,0.0405,0.5006,0.0406,0.0406"], "-pd_nofail0_box"),  # holds no node
+    ("cantilever", ["-pd_nofail0_box", "5,5,5,6,6,6"], "-pd_nofail0_box"),  # outside the domain
+    ("cantilever", ["-pd_plate0_box", "0.9,0,0.1,1,0.1,0.12", "-pd_plate0_E", "-1"], "-pd_plate0_E"),
+    ("cantilever", ["-pd_plate1_box", "0.9,0,0.1,1,0.1,0.12"], "-pd_plate1_box"),  # numbering gap
+    ("cantilever", ["-pd_plate0_box", "0.5005,0.0405,0.0405,0.5006,0.0406,0.0406"], "-pd_plate0_box"),  # holds no node
 ]
 
 

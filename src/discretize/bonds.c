@@ -220,7 +220,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   bd->b      = pl.b;
   PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &bd->coef, PetscMax(1, bd->nbonds), &bd->material));
   PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &beta));
-  for (PetscInt m = 0; m < sc->nmaterials; m++) c0[m] = PDMicromodulus(sc, sc->material[m].E);
+  for (PetscInt m = 0; m < sc->nmaterials + sc->nplates; m++) c0[m] = PDMicromodulus(sc, sc->material[m].E);
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscBool bar_only = bd->b[e] < 0 ? PETSC_TRUE : PETSC_FALSE;
     PetscInt        i, j, mi, mj, d[3], n2, m;

@@ -92,7 +92,8 @@ PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
   PetscInt    layer, g[4], nvoid = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
-  PetscInt    innofail_mine[PD_MAX_NOFAIL] = {0}, innofail[PD_MAX_NOFAIL];
+  PetscInt    innofail_mine[PD_MAX_NOFAIL]   = {0}, innofail[PD_MAX_NOFAIL];
+  PetscInt    inplate_mine[PD_MAX_MATERIALS] = {0}, inplate[PD_MAX_MATERIALS];
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(lat, sizeof *lat));
@@ -133,7 +134,7 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   for (PetscInt l = 0; l < lat->nlocal; l++) {
     NodePosition(lat, lat->gid[l], &lat->x[3 * l]);
     lat->material[l] = 0;
-    for (PetscInt m = sc->nmaterials - 1; m > 0; m--)
+    for (PetscInt m = sc->nmaterials + sc->nplates - 1; m > 0; m--) /* plates over materials, later over earlier */
       if (PDGeometryContains(&sc->material[m].where, &lat->x[3 * l], sc)) {
         lat->material[l] = m;
         break;
@@ -145,7 +146,8 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
         if (l < lat->nowned) invoid_mine[v]++;
       }
     if (l < lat->nowned && lat->hollow[l]) nvoid++;
-    lat->nofail[l] = PETSC_FALSE;
+    lat->nofail[l] = lat->material[l] >= sc->nmaterials ? PETSC_TRUE : PETSC_FALSE; /* a plate's bonds never damage */
+    if (l < lat->nowned && lat->nofail[l]) inplate_mine[lat->material[l] - sc->nmaterials]++;
     for (PetscInt v = 0; v < sc->nnofail; v++)
       if (PDGeometryContains(&sc->nofail[v].where, &lat->x[3 * l], sc)) {
         lat->nofail[l] = PETSC_TRUE;
@@ -160,6 +162,10 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
                sc->voids[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
   PetscCheck(lat->nvoid < lat->nglobal, comm, PETSC_ERR_USER_INPUT, "Options -pd_void*: the voids leave no material in the domain");
   PetscCall(MPIU_Allreduce(innofail_mine, innofail, PD_MAX_NOFAIL, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(inplate_mine, inplate, PD_MAX_MATERIALS, MPIU_INT, MPI_SUM, comm));
+  for (PetscInt p = 0; p < sc->nplates; p++)
+    PetscCheck(inplate[p] > 0, comm, PETSC_ERR_USER_INPUT,
+               "Option %s_box: the plate holds no node (or later materials and plates cover it)", sc->material[sc->nmaterials + p].option);
   for (PetscInt v = 0; v < sc->nnofail; v++)
     PetscCheck(innofail[v] > 0, comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the no-fail zone contains no node", sc->nofail[v].option,
                sc->nofail[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");

@@ -295,6 +295,29 @@ PetscErrorCode PDSceneReadParts(PetscOptionItems *PetscOptionsObject, PDScene *s
     sc->nvoids = k + 1;
     PetscCall(ReadVoid(PetscOptionsObject, sc, k));
   }
+  for (PetscInt k = 0; k < PD_MAX_MATERIALS; k++) {
+    PDMaterial *p;
+    char        opt[64];
+    PetscBool   set;
+    PetscCall(HasOption("-pd_plate%" PetscInt_FMT "_box", k, &has));
+    if (!has) break;
+    PetscCheck(sc->nmaterials + k < PD_MAX_MATERIALS, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option -pd_plate%" PetscInt_FMT "_box: materials and plates together are at most %d", k, PD_MAX_MATERIALS);
+    sc->nplates = k + 1;
+    p           = &sc->material[sc->nmaterials + k];
+    PetscCall(PetscMemzero(p, sizeof *p));
+    PetscCall(PetscSNPrintf(p->option, sizeof p->option, "-pd_plate%" PetscInt_FMT, k));
+    p->law         = PD_LAW_ELASTIC;
+    p->where.shape = PD_SHAPE_BOX;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_box", p->option));
+    PetscCall(ReadBox(PetscOptionsObject, sc, opt, p->where.box, &set));
+    PetscCheck(BoxesOverlap(p->where.box, sc->domain, sc->dim, 0), PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s: box lies outside the domain -pd_domain", opt);
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_E", p->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, sc, opt, &p->E, NULL));
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_rho", p->option));
+    PetscCall(PDOptionReal(PetscOptionsObject, sc, opt, &p->rho, NULL));
+  }
   for (PetscInt k = 0; k < PD_MAX_NOFAIL; k++) {
     PetscCall(HasShape("-pd_nofail", k, &has));
     if (!has) break;

@@ -16,6 +16,7 @@ static const struct {
     [PD_FAMILY_VOID]     = {"-pd_void", "void", "voids", 0, PD_MAX_VOIDS - 1},
     [PD_FAMILY_BAR]      = {"-pd_bar", "bar", "bars", 0, PD_MAX_BARS - 1},
     [PD_FAMILY_NOFAIL]   = {"-pd_nofail", "no-fail zone", "no-fail zones", 0, PD_MAX_NOFAIL - 1},
+    [PD_FAMILY_PLATE]    = {"-pd_plate", "plate", "plates", 0, PD_MAX_MATERIALS - 2},
 };
 
 void PDSchemaFamily(PDOptionFamily f, const char **prefix, const char **noun, const char **nouns, PetscInt *first, PetscInt *last) {
@@ -149,6 +150,8 @@ PetscInt PDSchemaFamilyCount(PDOptionFamily f, const PDScene *sc) {
     return sc->nbars;
   case PD_FAMILY_NOFAIL:
     return sc->nnofail;
+  case PD_FAMILY_PLATE:
+    return sc->nplates;
   default:
     return 1;
   }

@@ -13,6 +13,7 @@ static const char *const Bonds[]  = {"concrete", "perfect", NULL};
 #define HOLE PD_FAMILY_VOID
 #define BAR PD_FAMILY_BAR
 #define NOFAIL PD_FAMILY_NOFAIL
+#define PLATE PD_FAMILY_PLATE
 
 const PDOptionSpec PDOptionSchema[] = {
     /* scene and body */
@@ -342,6 +343,28 @@ const PDOptionSpec PDOptionSchema[] = {
      .def    = "z",
      .when   = PD_WHEN_CYLINDER,
      .help   = "Axis of a cylinder no-fail zone (z in 2D)"},
+    /* bearing plates */
+    {.name     = "_box",
+     .family   = PLATE,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "required",
+     .help = "Bearing plate: an elastic box (over materials) whose bonds, and those joining it to the concrete, never damage; put loads "
+             "and supports on it so that they spread"},
+    {.name   = "_E",
+     .family = PLATE,
+     .type   = PD_OPTION_REAL,
+     .unit   = "Pa",
+     .def    = "200e9",
+     .range  = "(0, inf)",
+     .help   = "Young's modulus of the plate (steel by default)"},
+    {.name   = "_rho",
+     .family = PLATE,
+     .type   = PD_OPTION_REAL,
+     .unit   = "kg/m^3",
+     .def    = "7850",
+     .range  = "(0, inf)",
+     .help   = "Density of the plate (the explicit path's mass)"},
     /* load path and curve */
     {.name     = "-pd_load_region",
      .type     = PD_OPTION_INT,
