@@ -17,6 +17,15 @@ static void NodeLine(const PDLattice *lat, const PDBar *b, PetscInt line[3], Pet
   *last  = PetscMin(lat->n[a] - 1, (PetscInt)PetscFloorReal(hi + 1e-9));
 }
 
+/* Whether bar b's line holds the lattice node ijk within the bar's ends. */
+static PetscBool Holds(const PDLattice *lat, const PDBar *b, const PetscInt ijk[3]) {
+  PetscInt  line[3], first, last;
+  PetscBool on = PETSC_TRUE;
+  NodeLine(lat, b, line, &first, &last);
+  for (PetscInt c = 0; c < 3 && on; c++) on = c == b->axis ? (ijk[c] >= first && ijk[c] <= last) : ijk[c] == line[c];
+  return on;
+}
+
 PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, PetscInt gj) {
   PetscInt p[3], q[3];
 
@@ -24,14 +33,8 @@ PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, Petsc
   PDLatticeNodeIndices(lat, gi, p);
   PDLatticeNodeIndices(lat, gj, q);
   for (PetscInt k = 0; k < sc->nbars; k++) {
-    const PDBar   *b = &sc->bar[k];
-    const PetscInt a = b->axis;
-    PetscInt       line[3], first, last;
-    PetscBool      on = PetscAbsInt(p[a] - q[a]) == 1 ? PETSC_TRUE : PETSC_FALSE;
-    NodeLine(lat, b, line, &first, &last);
-    for (PetscInt c = 0; c < 3 && on; c++)
-      if (c != a) on = p[c] == line[c] && q[c] == line[c] ? PETSC_TRUE : PETSC_FALSE;
-    if (on && PetscMin(p[a], q[a]) >= first && PetscMax(p[a], q[a]) <= last) return k;
+    const PDBar *b = &sc->bar[k];
+    if (PetscAbsInt(p[b->axis] - q[b->axis]) == 1 && Holds(lat, b, p) && Holds(lat, b, q)) return k;
   }
   return -1;
 }
@@ -40,14 +43,8 @@ PetscInt PDBarHoldingNode(const PDScene *sc, const PDLattice *lat, PetscInt gid)
   PetscInt p[3];
 
   PDLatticeNodeIndices(lat, gid, p);
-  for (PetscInt k = 0; k < sc->nbars; k++) {
-    const PDBar *b = &sc->bar[k];
-    PetscInt     line[3], first, last;
-    PetscBool    on = PETSC_TRUE;
-    NodeLine(lat, b, line, &first, &last);
-    for (PetscInt c = 0; c < 3 && on; c++) on = c == b->axis ? (p[c] >= first && p[c] <= last) : p[c] == line[c];
-    if (on) return k;
-  }
+  for (PetscInt k = 0; k < sc->nbars; k++)
+    if (Holds(lat, &sc->bar[k], p)) return k;
   return -1;
 }
 
