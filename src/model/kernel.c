@@ -107,6 +107,14 @@ static inline void SegmentForce(const PDModel *m, PetscInt sg, PetscReal s, Pets
   *gp *= c;
 }
 
+/* What a segment of length L0 dissipates on its way from the committed state to (sp, rupt): s_y E A L0 per
+   unit of plastic stretch, or at a break the elastic energy it held at stretch s. */
+static inline PetscReal SegmentDissipation(const PDModel *m, PetscInt sg, PetscReal L0, PetscReal s, PetscReal sp, PetscBool rupt) {
+  const PDSteel *st = &m->steel[m->bonds->seg_bar[sg]];
+  return m->bonds->seg_coef[sg] * L0 *
+         (rupt && !m->ruptured_n[sg] ? PDSteelStored(st, s, m->sp_n[sg]) : st->sy * PetscAbsReal(sp - m->sp_n[sg]));
+}
+
 /* A bond's force and slope: its concrete's and its bar segment's, if it carries one. */
 static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
   ConcreteForce(m, e, s, g, gp);
@@ -165,11 +173,8 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
       PetscReal      g, gp, sp;
       PetscBool      rupt;
       SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
-      /* the committed dissipation and what reaching s adds: plastic flow, or the elastic energy a break releases */
       if (!rupt) es += bd->seg_coef[sg] * L0 * PDSteelStored(st, s, sp);
-      ed += m->dissipated_n[sg] +
-            bd->seg_coef[sg] * L0 *
-                (rupt && !m->ruptured_n[sg] ? PDSteelStored(st, s, m->sp_n[sg]) : st->sy * PetscAbsReal(sp - m->sp_n[sg]));
+      ed += m->dissipated_n[sg] + SegmentDissipation(m, sg, L0, s, sp, rupt);
     }
     if (!m->softening || m->law[bd->material[e]].kind == PD_LAW_ELASTIC) {
       es += 0.5 * c * s * s * L0;
@@ -339,7 +344,6 @@ void PDModelCommitBond(PDModel *m, PetscInt e, PetscReal s) {
 
 void PDModelCommitSegment(PDModel *m, PetscInt sg, PetscReal s) {
   const PDBonds   *bd = m->bonds;
-  const PDSteel   *st = &m->steel[bd->seg_bar[sg]];
   const PetscInt   e  = bd->seg_bond[sg];
   const PetscReal *xa = &m->lat->x[3 * bd->a[e]], *xb = &m->lat->x[3 * bd->b[e]];
   PetscReal        g, gp, sp, L0 = 0;
@@ -348,10 +352,7 @@ void PDModelCommitSegment(PDModel *m, PetscInt sg, PetscReal s) {
   for (PetscInt a = 0; a < 3; a++) L0 += (xb[a] - xa[a]) * (xb[a] - xa[a]);
   L0 = PetscSqrtReal(L0);
   SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
-  if (rupt && !m->ruptured_n[sg])
-    m->dissipated_n[sg] += bd->seg_coef[sg] * L0 * PDSteelStored(st, s, m->sp_n[sg]);
-  else
-    m->dissipated_n[sg] += bd->seg_coef[sg] * L0 * st->sy * PetscAbsReal(sp - m->sp_n[sg]);
+  m->dissipated_n[sg] += SegmentDissipation(m, sg, L0, s, sp, rupt);
   m->sp_n[sg]       = sp;
   m->ruptured_n[sg] = rupt;
 }
