@@ -108,11 +108,12 @@ static inline void SegmentForce(const PDModel *m, PetscInt sg, PetscReal s, Pets
 }
 
 /* What a segment of length L0 dissipates on its way from the committed state to (sp, rupt): s_y E A L0 per
-   unit of plastic stretch, or at a break the elastic energy it held at stretch s. */
+   unit of plastic stretch, or at a break the elastic energy it held when it broke, at the rupture
+   stretch (the step may carry the stretch past it). */
 static inline PetscReal SegmentDissipation(const PDModel *m, PetscInt sg, PetscReal L0, PetscReal s, PetscReal sp, PetscBool rupt) {
   const PDSteel *st = &m->steel[m->bonds->seg_bar[sg]];
   return m->bonds->seg_coef[sg] * L0 *
-         (rupt && !m->ruptured_n[sg] ? PDSteelStored(st, s, m->sp_n[sg]) : st->sy * PetscAbsReal(sp - m->sp_n[sg]));
+         (rupt && !m->ruptured_n[sg] ? PDSteelStored(st, PetscMin(s, st->su), m->sp_n[sg]) : st->sy * PetscAbsReal(sp - m->sp_n[sg]));
 }
 
 /* A bond's force and slope: its concrete's and its bar segment's, if it carries one. */
