@@ -1,5 +1,5 @@
 """Steel bars (-pd_barK_*): axial stiffness and yield force as built, a bar holding a cut prism, MPI.
-Usage: test_bars.py axial|notch|mpi|restart"""
+Usage: test_bars.py axial|notch|mpi|restart|stuttgart"""
 import math
 import os
 import sys
@@ -105,5 +105,24 @@ def restart():
             ranks, len(a), worst))
 
 
+def stuttgart():
+    # The Stuttgart beams (scripts/stuttgart_scenes.py) as built: two 26 mm bars of 1,062 mm^2 together at
+    # d = 270 mm, one segment per pair of nodes along the beam, and steel effects; the smallest 3D beam and
+    # every plane-stress version, dry runs.
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
+    import stuttgart_scenes
+    import tempfile
+    folder = tempfile.mkdtemp(prefix="pdtest_scene_")
+    cases = [("stuttgart_beam1", None, 2)] + [(None, stuttgart_scenes.scene(n, 2, folder), 1) for n in stuttgart_scenes.BEAMS]
+    for name, path, nbars in cases:
+        r = run(name, *(["-options_file", path] if path else []), "-pd_dry_run")
+        s = r.summary
+        area = sum(b["area_m2"] for b in s["bars"]["list"])
+        nx = round(s["options"]["-pd_domain"][3 if s["options"]["-pd_model"] == "3d" else 2] / stuttgart_scenes.DX)
+        check(len(s["bars"]["list"]) == nbars and rel(area, 2 * math.pi * 0.026 ** 2 / 4) < 1e-9 and s["bars"]["segments"] == nbars * (nx - 1)
+              and "steel_plasticity" in s["effects"], "%s: %d bar(s) of %.1f mm^2 together, %d segments" % (
+                  s["options"]["-pd_name"], nbars, 1e6 * area, s["bars"]["segments"]))
+
+
 if __name__ == "__main__":
-    {"axial": axial, "notch": notch, "mpi": mpi, "restart": restart}[sys.argv[1]]()
+    {"axial": axial, "notch": notch, "mpi": mpi, "restart": restart, "stuttgart": stuttgart}[sys.argv[1]]()
