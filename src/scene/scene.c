@@ -214,5 +214,9 @@ PetscErrorCode PDSceneView(const PDScene *sc, PetscViewer v) {
   PetscCall(PetscViewerASCIIPrintf(
       v, "  %" PetscInt_FMT " materials, %" PetscInt_FMT " notches, %" PetscInt_FMT " regions, %" PetscInt_FMT " steps, kinematics %s\n",
       sc->nmaterials, sc->nnotches, sc->nregions, sc->steps, PDKinematicsNames[sc->kinematics]));
+  if (sc->nbars || sc->nplates || sc->nnofail || sc->nvoids)
+    PetscCall(PetscViewerASCIIPrintf(
+        v, "  %" PetscInt_FMT " steel bars, %" PetscInt_FMT " bearing plates, %" PetscInt_FMT " no-fail zones, %" PetscInt_FMT " voids\n",
+        sc->nbars, sc->nplates, sc->nnofail, sc->nvoids));
   PetscFunctionReturn(0);
 }
