@@ -202,6 +202,11 @@ typedef struct {
   PDOptionValue     *options;
 } PDScene;
 
+/* A bar's steel area A_s = count pi d^2 / 4 (m^2). */
+static inline PetscReal PDBarArea(const PDBar *b) {
+  return b->count * PETSC_PI * b->diameter * b->diameter / 4;
+}
+
 /* Reads and validates the scene. Every -pd_ option given must belong to the schema and be used by the
    scene; anything else is an input error naming the option (and the closest valid name). */
 PetscErrorCode PDSceneCreateFromOptions(MPI_Comm, PDScene *);

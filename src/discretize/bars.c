@@ -73,21 +73,20 @@ PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds
                  b->option, c->option, (double)lat->dx);
     }
   }
+  /* the bar of each bond (or -1) in seg first, then its segment index */
+  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->seg));
   for (PetscInt e = 0; e < bd->nbonds; e++)
-    if (PDBarOfPair(sc, lat, lat->gid[bd->a[e]], lat->gid[bd->b[e]]) >= 0) n++;
+    if ((bd->seg[e] = PDBarOfPair(sc, lat, lat->gid[bd->a[e]], lat->gid[bd->b[e]])) >= 0) n++;
   bd->nseg = n;
-  PetscCall(PetscMalloc4(PetscMax(1, bd->nbonds), &bd->seg, PetscMax(1, n), &bd->seg_bond, PetscMax(1, n), &bd->seg_bar, PetscMax(1, n),
-                         &bd->seg_coef));
+  PetscCall(PetscMalloc3(PetscMax(1, n), &bd->seg_bond, PetscMax(1, n), &bd->seg_bar, PetscMax(1, n), &bd->seg_coef));
   n = 0;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt k = PDBarOfPair(sc, lat, lat->gid[bd->a[e]], lat->gid[bd->b[e]]);
-    bd->seg[e]       = -1;
+    const PetscInt k = bd->seg[e];
     if (k < 0) continue;
-    const PDBar *b  = &sc->bar[k];
     bd->seg[e]      = n;
     bd->seg_bond[n] = e;
     bd->seg_bar[n]  = k;
-    bd->seg_coef[n] = b->E * b->count * PETSC_PI * b->diameter * b->diameter / 4;
+    bd->seg_coef[n] = sc->bar[k].E * PDBarArea(&sc->bar[k]);
     if (PDBondCountedHere(lat, bd, e)) mine++;
     n++;
   }

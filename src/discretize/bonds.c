@@ -196,12 +196,12 @@ static PetscErrorCode CheckOnePiece(const PDScene *sc, const PDLattice *lat, con
 
 /* Bonds whose concrete stays elastic: to a node in a no-fail zone (Ness), or between a node of a bar with
    perfect bond and a concrete node (the interface bonds of the thesis, which never fail). */
-static PetscBool NeverDamages(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j) {
+static PetscBool NeverDamages(const PDScene *sc, const PDLattice *lat, const PetscInt *node_bar, PetscInt i, PetscInt j) {
   PetscInt ki, kj;
   if (lat->nofail[i] || lat->nofail[j]) return PETSC_TRUE;
-  if (!sc->nbars) return PETSC_FALSE;
-  ki = PDBarHoldingNode(sc, lat, lat->gid[i]);
-  kj = PDBarHoldingNode(sc, lat, lat->gid[j]);
+  if (!node_bar) return PETSC_FALSE;
+  ki = node_bar[i];
+  kj = node_bar[j];
   return (ki >= 0) != (kj >= 0) && sc->bar[ki >= 0 ? ki : kj].perfect ? PETSC_TRUE : PETSC_FALSE;
 }
 
@@ -210,6 +210,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscInt   ncut_local, nonce = 0;
   PetscReal *beta, *cut_volume;
   PetscReal  c0[PD_MAX_MATERIALS];
+  PetscInt  *node_bar = NULL; /* the bar holding each local node, or -1 (scenes with bars) */
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(bd, sizeof *bd));
@@ -221,6 +222,10 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &bd->coef, PetscMax(1, bd->nbonds), &bd->material));
   PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &beta));
   for (PetscInt m = 0; m < sc->nmaterials + sc->nplates; m++) c0[m] = PDMicromodulus(sc, sc->material[m].E);
+  if (sc->nbars) {
+    PetscCall(PetscMalloc1(lat->nlocal, &node_bar));
+    for (PetscInt l = 0; l < lat->nlocal; l++) node_bar[l] = PDBarHoldingNode(sc, lat, lat->gid[l]);
+  }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscBool bar_only = bd->b[e] < 0 ? PETSC_TRUE : PETSC_FALSE;
     PetscInt        i, j, mi, mj, d[3], n2, m;
@@ -237,7 +242,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     beta[e]         = PDFamilyPartialVolume(sc->horizon_ratio, n2, sc->partial_volume);
     bd->coef[e] = c0[m] * PDInfluenceValue(sc->influence, PetscSqrtReal((PetscReal)n2), sc->horizon_ratio) * beta[e] * lat->cell_volume *
                   lat->cell_volume;
-    if (NeverDamages(sc, lat, i, j)) bd->material[e] = PD_MATERIAL_ELASTIC;
+    if (NeverDamages(sc, lat, node_bar, i, j)) bd->material[e] = PD_MATERIAL_ELASTIC;
     if (bar_only) { /* its neighbour counts in the family volume as cut already (cut_volume) */
       beta[e]         = 0;
       bd->coef[e]     = 0;
@@ -245,6 +250,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     }
     if (PDBondCountedHere(lat, bd, e)) nonce++;
   }
+  PetscCall(PetscFree(node_bar));
   PetscCall(BuildIncidence(lat, bd));
   bd->lambda_min = bd->lambda_max = 1;
   keep_lambda                     = keep_lambda && sc->surface_correction;
@@ -267,7 +273,8 @@ PetscErrorCode PDBondsDestroy(PDBonds *bd) {
   PetscCall(PetscFree(bd->inc_start));
   PetscCall(PetscFree(bd->inc_bond));
   PetscCall(PetscFree(bd->lambda));
-  PetscCall(PetscFree4(bd->seg, bd->seg_bond, bd->seg_bar, bd->seg_coef));
+  PetscCall(PetscFree(bd->seg));
+  PetscCall(PetscFree3(bd->seg_bond, bd->seg_bar, bd->seg_coef));
   PetscFunctionReturn(0);
 }
 

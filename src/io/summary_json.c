@@ -117,7 +117,7 @@ static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const
   PetscCall(PetscFPrintf(comm, fp, "  \"bars\": {\n    \"list\": ["));
   for (PetscInt k = 0; k < sc->nbars; k++) {
     const PDBar    *b = &sc->bar[k];
-    const PetscReal A = b->count * PETSC_PI * b->diameter * b->diameter / 4;
+    const PetscReal A = PDBarArea(b);
     PetscCall(PetscFPrintf(comm, fp,
                            "%s{\"bar\": %" PetscInt_FMT ", \"area_m2\": %.10e, \"axial_stiffness_N\": %.10e, \"yield_force_N\": %.10e}",
                            k ? ", " : "", k, (double)A, (double)(b->E * A), (double)(b->fy * A)));

@@ -358,7 +358,7 @@ void PDModelCommitSegment(PDModel *m, PetscInt sg, PetscReal s) {
   m->ruptured_n[sg] = rupt;
 }
 
-/* Largest |stress| of the bar segments this rank holds: force over the bar's area (count pi d^2 / 4). */
+/* Largest |stress| of the bar segments this rank holds: force over the bar's area. */
 PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
   const PDBonds   *bd   = m->bonds;
   const PDLattice *lat  = m->lat;
@@ -370,7 +370,7 @@ PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
     PetscBool      rupt;
     BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
     SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
-    smax = PetscMax(smax, PetscAbsReal(g) / (b->count * PETSC_PI * b->diameter * b->diameter / 4));
+    smax = PetscMax(smax, PetscAbsReal(g) / PDBarArea(b));
   }
   return smax;
 }

@@ -290,9 +290,11 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     }
   }
   if (sc->nbars) {
+    if (!m->softening) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->stretch)); /* the commit's scratch */
     PetscCall(
         PetscCalloc3(PetscMax(1, bd->nseg), &m->sp_n, PetscMax(1, bd->nseg), &m->ruptured_n, PetscMax(1, bd->nseg), &m->dissipated_n));
-    m->history_bytes += (PetscInt64)bd->nseg * (2 * sizeof(PetscReal) + sizeof(PetscBool));
+    m->history_bytes += (PetscInt64)bd->nseg * (2 * sizeof(PetscReal) + sizeof(PetscBool)) +
+                        (m->softening ? 0 : (PetscInt64)bd->nbonds * sizeof(PetscReal));
   }
   {
     PetscInt64 mine = m->history_bytes;
@@ -316,6 +318,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree2(m->ka, m->kb));
   PetscCall(PetscFree(m->kp));
+  if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->thr));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));

@@ -158,7 +158,6 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   s = m->stretch;
-  if (!s) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &s)); /* bars in elastic concrete keep no scratch */
   PetscCall(PDModelStretchesAt(m, u, s));
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
     const PetscReal cap = Threshold(m, e);
@@ -166,7 +165,6 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
     m->level_n[e]       = m->level[e];
   }
   for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, s[bd->seg_bond[sg]]);
-  if (s != m->stretch) PetscCall(PetscFree(s));
   PetscCall(PDModelCountDamage(m));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
   PetscFunctionReturn(0);
