@@ -6,6 +6,7 @@ PetscReal PDMicromodulus(const PDScene *, PetscReal E);
 PetscReal PDInfluenceValue(PDInfluence, PetscReal len, PetscReal horizon);
 PetscReal PDInfluenceMoment(PDInfluence, PetscInt k); /* int_0^1 omega(r) r^k dr */
 PetscReal PDLatticeFractureRatio(const PDScene *);
+PetscReal PDLatticeStiffnessRatio(const PDScene *); /* the lattice bulk's Young's modulus along an axis over the continuum's */
 
 /* Bond states the damage limiter hands out one level at a time: elastic, then the softening branch in
    -pd_limiter_sublevels parts (geometric in stretch from s0 to sc), then broken. */

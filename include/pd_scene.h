@@ -16,6 +16,7 @@
 typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDModelKind;
 typedef enum { PD_INFLUENCE_CONSTANT, PD_INFLUENCE_CONICAL, PD_INFLUENCE_QUARTIC } PDInfluence;
 typedef enum { PD_KINEMATICS_SMALL, PD_KINEMATICS_FINITE } PDKinematics;
+typedef enum { PD_CALIBRATION_CONTINUUM, PD_CALIBRATION_STENCIL } PDCalibration;
 typedef enum { PD_LAW_ELASTIC, PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR } PDLawKind;
 typedef enum { PD_STRETCH_EXACT, PD_STRETCH_MODIFIED } PDStretch;
 typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE, PD_CONTROL_ARCLENGTH, PD_CONTROL_AUTO } PDControl;
@@ -39,6 +40,7 @@ typedef enum {
 extern const char *const PDModelKinds[];
 extern const char *const PDInfluences[];
 extern const char *const PDKinematicsNames[];
+extern const char *const PDCalibrationNames[];
 extern const char *const PDLawNames[];
 extern const char *const PDStretchNames[];
 extern const char *const PDControlNames[];
@@ -120,24 +122,25 @@ typedef struct {
 } PDRegion;
 
 typedef struct {
-  char         name[PD_NAME_LEN];
-  char         output_dir[PETSC_MAX_PATH_LEN];
-  char         data_file[PETSC_MAX_PATH_LEN]; /* experimental curve overlaid on curve.svg */
-  PDModelKind  model;
-  PetscInt     dim; /* 2 or 3, derived from model */
-  PetscReal    thickness;
-  PetscReal    domain[6];
-  PetscReal    dx, horizon_ratio;
-  PDInfluence  influence;
-  PetscBool    partial_volume, surface_correction;
-  PetscBool    notch_surface;  /* notch faces count as free surfaces in the surface correction */
-  PetscBool    sc_whole_cells; /* surface correction: family volume counts neighbour cells whole (PeriPy) */
-  PDKinematics kinematics;
-  PDStretch    stretch;
-  PetscBool    sc_correction;    /* per-bond critical stretch from lambda_ij c */
-  PetscBool    gf_lattice;       /* critical stretches from the lattice's own crack-plane bond sum, not the continuum */
-  PetscReal    strength_scatter; /* per-bond tensile strength f_t (1 + r xi), xi uniform in [-1, 1] by bond id; 0: none */
-  PDControl    control;
+  char          name[PD_NAME_LEN];
+  char          output_dir[PETSC_MAX_PATH_LEN];
+  char          data_file[PETSC_MAX_PATH_LEN]; /* experimental curve overlaid on curve.svg */
+  PDModelKind   model;
+  PetscInt      dim; /* 2 or 3, derived from model */
+  PetscReal     thickness;
+  PetscReal     domain[6];
+  PetscReal     dx, horizon_ratio;
+  PDInfluence   influence;
+  PetscBool     partial_volume, surface_correction;
+  PetscBool     notch_surface;  /* notch faces count as free surfaces in the surface correction */
+  PetscBool     sc_whole_cells; /* surface correction: family volume counts neighbour cells whole (PeriPy) */
+  PDCalibration calibration;    /* bond constants from the continuum integral or from the lattice stencil */
+  PDKinematics  kinematics;
+  PDStretch     stretch;
+  PetscBool     sc_correction;    /* per-bond critical stretch from lambda_ij c */
+  PetscBool     gf_lattice;       /* critical stretches from the lattice's own crack-plane bond sum, not the continuum */
+  PetscReal     strength_scatter; /* per-bond tensile strength f_t (1 + r xi), xi uniform in [-1, 1] by bond id; 0: none */
+  PDControl     control;
   /* path following (-pd_control arclength|auto) */
   PDArcType  arc_type;       /* constraint */
   PetscBool  arc_augmented;  /* linear constraints: one augmented solve per Newton iteration, not two (bordering) */

@@ -167,6 +167,54 @@ def coarse():
         check(rel(w, w_ref) < 1e-8, "dx = %g: tip deflection %.12e m, CG on AIJ %.12e m" % (dx, w, w_ref))
 
 
+def lattice_ratio(m, dim):
+    """Young's modulus along a lattice axis of the bulk stencil over the continuum's (3D, plane stress), for
+    the continuum micromodulus with the constant influence function: the stencil's full stiffness tensor
+    C_abcd = 1/2 sum c beta |xi| e_a e_b e_c e_d inverted in Voigt form (no symmetry assumed), dx = 1."""
+    R = int(math.floor(m)) + 1
+    c = 12 / (math.pi * m ** 4) if dim == 3 else 9 / (math.pi * m ** 3)
+    C = np.zeros((3, 3, 3, 3))
+    for i in range(-R, R + 1):
+        for j in range(-R, R + 1):
+            for k in (range(-R, R + 1) if dim == 3 else [0]):
+                n2 = i * i + j * j + k * k
+                if n2 == 0 or n2 > m * m * (1 + 1e-12):
+                    continue
+                r = math.sqrt(n2)
+                beta = 0.5 if abs(n2 - m * m) <= 1e-12 * m * m else (1 if r <= m - 0.5 else m + 0.5 - r)
+                e = np.array([i, j, k]) / r
+                C += 0.5 * c * beta * r * np.einsum("a,b,c,d->abcd", e, e, e, e)
+    idx = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)] if dim == 3 else [(0, 0), (1, 1), (0, 1)]
+    V = np.array([[C[a[0], a[1], b[0], b[1]] for b in idx] for a in idx])
+    return 1 / np.linalg.inv(V)[0, 0]
+
+
+def calibration():
+    # -pd_calibration stencil: the lattice's bulk stiffness ratio that pdimplicit divides out equals an
+    # independent evaluation (full tensor, inverted without the cubic symmetry pdimplicit's closed form
+    # assumes) to 1e-6; and the elastic bars then converge under refinement at a fixed m, where the
+    # continuum calibration drifts to the ratio's error (docs/calibration.md).
+    exact = 1e5 / (30e9 * 0.1 * 0.1)
+    for m in (3.0, math.pi, 4.0):
+        r = run("bar_tension", "-pd_dx", 0.02, "-pd_horizon_ratio", m, "-pd_calibration", "stencil")
+        got, want = r.summary["lattice_stiffness_ratio"], lattice_ratio(m, 3)
+        check(abs(got - want) < 1e-6, "3D m = %.4f: lattice stiffness ratio %.6f, independent %.6f" % (m, got, want))
+        check("stencil_calibration" in r.summary["corrections"], "corrections name the stencil calibration")
+    got = run("bar_tension_2d", "-pd_calibration", "stencil").summary["lattice_stiffness_ratio"]
+    check(abs(got - lattice_ratio(math.pi, 2)) < 1e-6, "plane stress m = pi: ratio %.6f, independent %.6f" % (got, lattice_ratio(math.pi, 2)))
+    # plane stress bar at m = pi: the error halves with dx and is within 1 % at dx = 2.5 mm
+    err = {}
+    for dx in (0.01, 0.005, 0.0025):
+        err[dx] = bar_strain(run("bar_tension_2d", "-pd_dx", dx, "-pd_calibration", "stencil")) / exact - 1
+        print("plane stress bar, stencil calibration, dx = %g: error %+.3f %%" % (dx, 100 * err[dx]))
+    check(abs(err[0.0025]) < 0.01, "dx = 2.5 mm: |error| %.3f %% under 1 %%" % (100 * abs(err[0.0025])))
+    check(abs(err[0.005]) < 0.6 * abs(err[0.01]) and abs(err[0.0025]) < 0.6 * abs(err[0.005]), "the error falls by about half per halving of dx")
+    # 3D bar: the same halving from dx = 20 to 10 mm
+    e20, e10 = (bar_strain(run("bar_tension", "-pd_dx", dx, "-pd_calibration", "stencil")) / exact - 1 for dx in (0.02, 0.01))
+    print("3D bar, stencil calibration: error %+.3f %% at dx = 20 mm, %+.3f %% at 10 mm" % (100 * e20, 100 * e10))
+    check(abs(e10) < 0.6 * abs(e20), "3D: the error falls by about half from dx = 20 to 10 mm")
+
+
 if __name__ == "__main__":
     {"bond_counts": bond_counts, "bar_tension": bar_tension, "bar_2d": bar_2d, "materials": materials, "fields_index": fields_index, "cantilever": cantilever, "effects": effects, "mpi": mpi,
-     "storage_formats": storage_formats, "coarse": coarse}[sys.argv[1]]()
+     "storage_formats": storage_formats, "coarse": coarse, "calibration": calibration}[sys.argv[1]]()

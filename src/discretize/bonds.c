@@ -28,6 +28,19 @@ static PetscReal FamilyVolumeShare(const PDScene *sc, PetscReal beta) {
   return sc->sc_whole_cells ? 1 : beta;
 }
 
+#define PD_SHARES 4 /* per neighbour: family volume, stiffness along x, y, z */
+
+/* A neighbour's weights in the surface correction, from its lattice offset st (di, dj, dk, n2): [0] its
+   share of the family volume (m^3); [1 + a] its share of the node's stiffness along axis a under the stencil
+   calibration, omega beta |xi| e_a^4 in units of dx, the bond's term in C_aaaa (PDLatticeStiffnessRatio) */
+static void FamilyShares(const PDScene *sc, const PDLattice *lat, const PetscInt st[4], PetscReal w[PD_SHARES]) {
+  const PetscReal beta = PDFamilyPartialVolume(sc->horizon_ratio, st[3], sc->partial_volume), len = PetscSqrtReal((PetscReal)st[3]);
+  const PetscReal k = PDInfluenceValue(sc->influence, len, sc->horizon_ratio) * beta * len;
+
+  w[0] = FamilyVolumeShare(sc, beta) * lat->cell_volume;
+  for (PetscInt a = 0; a < 3; a++) w[1 + a] = k * PetscPowRealInt(st[a] / len, 4);
+}
+
 typedef struct {
   PetscInt *a, *b, n, cap;
 } PairList;
@@ -49,8 +62,8 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
 /* Neighbour search: for every owned node outside the voids, every node within the horizon, outside the
    voids too, that no notch separates. The family is the lattice stencil (design point 28) laid on the
    node's integer lattice indices, so the set depends neither on where the domain sits nor on the slab
-   partition. cut_volume[i] collects the partial volumes of the owned node's neighbours behind a notch. */
-static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local, PetscReal *cut_volume) {
+   partition. cut[PD_SHARES i + k] collects the shares (FamilyShares) of the owned node's neighbours behind a notch. */
+static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairList *pl, PetscInt *ncut_local, PetscReal *cut) {
   const PetscReal tol   = 1e-9 * sc->dx;
   const PetscInt  first = lat->gid_start, last = lat->gid_start + lat->nowned;
 
@@ -66,19 +79,21 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
       const PetscInt *st = &lat->stencil[4 * s];
       const PetscInt  ni = c[0] + st[0], nj = c[1] + st[1], nk = c[2] + st[2];
       PetscInt        gj, j;
-      PetscBool       cut = PETSC_FALSE;
+      PetscBool       cuts = PETSC_FALSE;
       if (ni < 0 || ni >= lat->n[0] || nj < 0 || nj >= lat->n[1] || nk < 0 || nk >= lat->n[2]) continue;
       gj = (ni * lat->n[1] + nj) * lat->n[2] + nk;
       /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
       if (gj < gi && gj >= first && gj < last) continue;
       j = PDLatticeLocalIndex(lat, gj);
       if (lat->hollow[j]) continue; /* no material there: the void's faces are free surfaces */
-      for (PetscInt q = 0; q < sc->nnotches && !cut; q++) cut = NotchCuts(&sc->notch[q], xi, &lat->x[3 * j], sc->dim, tol);
-      if (cut) {
-        const PetscReal vcut =
-            FamilyVolumeShare(sc, PDFamilyPartialVolume(sc->horizon_ratio, st[3], sc->partial_volume)) * lat->cell_volume;
-        cut_volume[i] += vcut;
-        if (j < lat->nowned) cut_volume[j] += vcut; /* a pair with a ghost is seen by the ghost's owner too */
+      for (PetscInt q = 0; q < sc->nnotches && !cuts; q++) cuts = NotchCuts(&sc->notch[q], xi, &lat->x[3 * j], sc->dim, tol);
+      if (cuts) {
+        PetscReal w[PD_SHARES];
+        FamilyShares(sc, lat, st, w);
+        for (PetscInt k = 0; k < PD_SHARES; k++) {
+          cut[PD_SHARES * i + k] += w[k];
+          if (j < lat->nowned) cut[PD_SHARES * j + k] += w[k]; /* a pair with a ghost is seen by the ghost's owner too */
+        }
         if (gi < gj) (*ncut_local)++;
         if (PDBarOfPair(sc, lat, gi, gj) < 0) continue;
         /* a bar crosses the notch: the pair stays for its segment, without concrete */
@@ -122,44 +137,75 @@ static PetscErrorCode BuildIncidence(const PDLattice *lat, PDBonds *bd) {
   PetscFunctionReturn(0);
 }
 
-/* Volume-method surface correction (Eq. 4.11): V_i = sum_j beta_ij V_j over the family of i, shared with
-   neighbouring ranks through a ghosted vector, lambda_ij = 2 V0 / (V_i + V_j). The correction makes up
-   for material missing beyond the body's faces. A notch is a cut through material that is there, so by
-   default the neighbours behind it still count in V_i (cut_volume); otherwise the bonds around the
-   notch tip are stiffened and strengthened by up to lambda, the spurious strengthening Hobbs Sec. 5.4.2
-   suspects near notches. -pd_sc_notch_surface treats the notch faces as free surfaces instead. */
-static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta,
-                                        const PetscReal *cut_volume, PetscBool keep) {
-  Vec             vol, vloc;
+/* Surface correction: the bonds of a node near a face are stiffened to make up for the material missing
+   beyond it. A notch is a cut through material that is there, so by default the neighbours behind it still
+   count (cut); otherwise the bonds around the notch tip are stiffened and strengthened, the spurious
+   strengthening Hobbs Sec. 5.4.2 suspects near notches. -pd_sc_notch_surface treats the notch faces as
+   free surfaces instead. Node sums are shared with neighbouring ranks through a ghosted vector.
+   - continuum calibration, the volume method (Eq. 4.11): V_i = sum_j beta_ij V_j over the family of i and
+     lambda_ij = 2 V0 / (V_i + V_j), V0 the horizon's analytic volume. In the bulk this is V0 over the
+     lattice's family volume, which makes up for part of the stencil's quadrature error as well.
+   - stencil calibration (the bulk is right already, PDMicromodulus), the energy method of Madenci and
+     Oterkus (2014, Sec. 4.2) on the lattice: a node's stiffness along axis a, S_a = sum_j omega beta |xi|
+     e_a^4, against a bulk node's S0 gives the factor S0 / S_a per axis; along a bond's direction e they
+     combine as an ellipsoid, G(e) = (sum_a e_a^2 (S_a / S0)^2)^(-1/2), and lambda_ij = (G_i + G_j) / 2.
+     A node by a face parallel to the load keeps nearly all of its stiffness along the face, so the bonds
+     along the face are hardly stiffened, where the volume method stiffens them with the lost volume. */
+static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat, PDBonds *bd, const PetscReal *beta, const PetscReal *cut,
+                                        PetscBool keep) {
+  Vec             shares, sloc;
   PetscScalar    *v;
-  const PetscReal delta = lat->horizon;
-  const PetscReal V0    = sc->dim == 3 ? 4.0 / 3.0 * PETSC_PI * delta * delta * delta : PETSC_PI * delta * delta * sc->thickness;
-  PetscReal       lmin = PETSC_MAX_REAL, lmax = PETSC_MIN_REAL;
+  const PetscReal delta   = lat->horizon;
+  const PetscBool stencil = sc->calibration == PD_CALIBRATION_STENCIL ? PETSC_TRUE : PETSC_FALSE;
+  const PetscReal V0      = sc->dim == 3 ? 4.0 / 3.0 * PETSC_PI * delta * delta * delta : PETSC_PI * delta * delta * sc->thickness;
+  PetscReal       S0 = 0, lmin = PETSC_MAX_REAL, lmax = PETSC_MIN_REAL, w[PD_SHARES];
 
   PetscFunctionBeginUser;
-  PetscCall(PDLatticeCreateGhostVec(lat, 1, &vol));
-  PetscCall(VecGetArray(vol, &v));
-  for (PetscInt i = 0; i < lat->nowned; i++) {
-    v[i] = sc->notch_surface ? 0 : cut_volume[i];
-    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++)
-      v[i] += FamilyVolumeShare(sc, beta[bd->inc_bond[p]]) * lat->cell_volume;
+  for (PetscInt k = 0; k < lat->nstencil; k++) {
+    FamilyShares(sc, lat, &lat->stencil[4 * k], w);
+    S0 += w[1];
   }
-  PetscCall(VecRestoreArray(vol, &v));
-  PetscCall(VecGhostUpdateBegin(vol, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(vol, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(vol, &vloc));
-  PetscCall(VecGetArray(vloc, &v));
+  PetscCall(PDLatticeCreateGhostVec(lat, PD_SHARES, &shares));
+  PetscCall(VecGetArray(shares, &v));
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    for (PetscInt k = 0; k < PD_SHARES; k++) v[PD_SHARES * i + k] = sc->notch_surface ? 0 : cut[PD_SHARES * i + k];
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
+      const PetscInt e = bd->inc_bond[p];
+      PetscInt       st[4];
+      if (beta[e] == 0) continue; /* a bar-only pair: counted as cut */
+      st[3] = PDLatticeOffset(lat, bd->a[e], bd->b[e], st);
+      FamilyShares(sc, lat, st, w);
+      for (PetscInt k = 0; k < PD_SHARES; k++) v[PD_SHARES * i + k] += w[k];
+    }
+  }
+  PetscCall(VecRestoreArray(shares, &v));
+  PetscCall(VecGhostUpdateBegin(shares, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(shares, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(shares, &sloc));
+  PetscCall(VecGetArray(sloc, &v));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscReal Vsum = PetscRealPart(v[bd->a[e]] + v[bd->b[e]]);
-    const PetscReal lam  = Vsum > 0 ? 2 * V0 / Vsum : 1;
+    const PetscScalar *va = &v[PD_SHARES * bd->a[e]], *vb = &v[PD_SHARES * bd->b[e]];
+    PetscReal          lam = 1;
+    if (stencil) {
+      PetscInt  d[3];
+      PetscReal n2 = PDLatticeOffset(lat, bd->a[e], bd->b[e], d), qa = 0, qb = 0;
+      for (PetscInt a = 0; a < 3; a++) {
+        qa += d[a] * d[a] / n2 * PetscSqr(PetscRealPart(va[1 + a]) / S0);
+        qb += d[a] * d[a] / n2 * PetscSqr(PetscRealPart(vb[1 + a]) / S0);
+      }
+      if (qa > 0 && qb > 0) lam = 0.5 * (1 / PetscSqrtReal(qa) + 1 / PetscSqrtReal(qb));
+    } else {
+      const PetscReal Vsum = PetscRealPart(va[0] + vb[0]);
+      if (Vsum > 0) lam = 2 * V0 / Vsum;
+    }
     bd->coef[e] *= lam;
     if (keep) bd->lambda[e] = lam;
     lmin = PetscMin(lmin, lam);
     lmax = PetscMax(lmax, lam);
   }
-  PetscCall(VecRestoreArray(vloc, &v));
-  PetscCall(VecGhostRestoreLocalForm(vol, &vloc));
-  PetscCall(VecDestroy(&vol));
+  PetscCall(VecRestoreArray(sloc, &v));
+  PetscCall(VecGhostRestoreLocalForm(shares, &sloc));
+  PetscCall(VecDestroy(&shares));
   PetscCall(MPIU_Allreduce(&lmin, &bd->lambda_min, 1, MPIU_REAL, MPIU_MIN, lat->comm));
   PetscCall(MPIU_Allreduce(&lmax, &bd->lambda_max, 1, MPIU_REAL, MPIU_MAX, lat->comm));
   PetscFunctionReturn(0);
@@ -208,14 +254,14 @@ static PetscBool NeverDamages(const PDScene *sc, const PDLattice *lat, const Pet
 PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd) {
   PairList   pl = {NULL, NULL, 0, 0};
   PetscInt   ncut_local, nonce = 0;
-  PetscReal *beta, *cut_volume;
+  PetscReal *beta, *cut;
   PetscReal  c0[PD_MAX_MATERIALS];
   PetscInt  *node_bar = NULL; /* the bar holding each local node, or -1 (scenes with bars) */
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(bd, sizeof *bd));
-  PetscCall(PetscCalloc1(PetscMax(1, lat->nowned), &cut_volume));
-  PetscCall(FindPairs(sc, lat, &pl, &ncut_local, cut_volume));
+  PetscCall(PetscCalloc1(PD_SHARES * PetscMax(1, lat->nowned), &cut));
+  PetscCall(FindPairs(sc, lat, &pl, &ncut_local, cut));
   bd->nbonds = pl.n;
   bd->a      = pl.a;
   bd->b      = pl.b;
@@ -243,7 +289,7 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     bd->coef[e] = c0[m] * PDInfluenceValue(sc->influence, PetscSqrtReal((PetscReal)n2), sc->horizon_ratio) * beta[e] * lat->cell_volume *
                   lat->cell_volume;
     if (NeverDamages(sc, lat, node_bar, i, j)) bd->material[e] = PD_MATERIAL_ELASTIC;
-    if (bar_only) { /* its neighbour counts in the family volume as cut already (cut_volume) */
+    if (bar_only) { /* its neighbour counts in the surface correction as cut already (cut) */
       beta[e]         = 0;
       bd->coef[e]     = 0;
       bd->material[e] = PD_MATERIAL_ELASTIC;
@@ -255,9 +301,9 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   bd->lambda_min = bd->lambda_max = 1;
   keep_lambda                     = keep_lambda && sc->surface_correction;
   if (keep_lambda) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->lambda));
-  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, cut_volume, keep_lambda));
+  if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, cut, keep_lambda));
   PetscCall(PetscFree(beta));
-  PetscCall(PetscFree(cut_volume));
+  PetscCall(PetscFree(cut));
   PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(PDBondsSetUpBars(sc, lat, bd));

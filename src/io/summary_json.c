@@ -50,12 +50,14 @@ static PetscErrorCode WriteEffects(MPI_Comm comm, FILE *fp, const PDModel *m) {
   }
   {
     /* discretisation corrections in force; the critical-stretch one only where a law has a critical stretch */
-    const char *name[5];
+    const char *name[6];
     PetscInt    n = 0;
     if (sc->partial_volume) name[n++] = "partial_volume";
+    if (sc->calibration == PD_CALIBRATION_STENCIL) name[n++] = "stencil_calibration";
     if (sc->surface_correction) name[n++] = "surface_correction";
     if (sc->surface_correction && sc->notch_surface && sc->nnotches) name[n++] = "notch_faces_corrected";
-    if (sc->surface_correction && sc->sc_whole_cells) name[n++] = "family_volume_whole_cells";
+    if (sc->surface_correction && sc->sc_whole_cells && sc->calibration == PD_CALIBRATION_CONTINUUM)
+      name[n++] = "family_volume_whole_cells";
     if (sc->surface_correction && sc->sc_correction && m->softening) name[n++] = "critical_stretch";
     PetscCall(PetscFPrintf(comm, fp, "  \"corrections\": ["));
     for (PetscInt k = 0; k < n; k++) PetscCall(PetscFPrintf(comm, fp, "%s\"%s\"", k ? ", " : "", name[k]));
@@ -198,6 +200,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          (double)sc->dx, (double)sc->horizon_ratio, PDInfluences[sc->influence], PDKinematicsNames[sc->kinematics]));
   PetscCall(PetscFPrintf(comm, fp, "  \"bonds_cut_by_notches\": %" PetscInt_FMT ",\n  \"surface_correction_range\": [%.6e, %.6e],\n",
                          m->bonds->ncut, (double)m->bonds->lambda_min, (double)m->bonds->lambda_max));
+  /* the lattice bulk's modulus along an axis over the continuum's, with the continuum micromodulus: what
+     -pd_calibration stencil divides out, and what the continuum calibration's results converge to */
+  PetscCall(PetscFPrintf(comm, fp, "  \"calibration\": \"%s\",\n  \"lattice_stiffness_ratio\": %.6f,\n",
+                         PDCalibrationNames[sc->calibration], (double)PDLatticeStiffnessRatio(sc)));
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT
                          ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n",

@@ -29,16 +29,53 @@ PetscReal PDInfluenceMoment(PDInfluence w, PetscInt k) {
   }
 }
 
-PetscReal PDMicromodulus(const PDScene *sc, PetscReal E) {
-  const PetscReal delta = sc->horizon_ratio * sc->dx;
+/* The continuum micromodulus, in units where dx = 1 (and t = 1 in 2D) when unit is set. */
+static PetscReal ContinuumMicromodulus(const PDScene *sc, PetscReal E, PetscBool unit) {
+  const PetscReal delta = sc->horizon_ratio * (unit ? 1 : sc->dx), t = unit ? 1 : sc->thickness;
   switch (sc->model) {
   case PD_MODEL_PLANE_STRESS:
-    return 3 * E / (PETSC_PI * sc->thickness * PDInfluenceMoment(sc->influence, 2) * delta * delta * delta);
+    return 3 * E / (PETSC_PI * t * PDInfluenceMoment(sc->influence, 2) * delta * delta * delta);
   case PD_MODEL_PLANE_STRAIN:
-    return 16 * E / (5 * PETSC_PI * sc->thickness * PDInfluenceMoment(sc->influence, 2) * delta * delta * delta);
+    return 16 * E / (5 * PETSC_PI * t * PDInfluenceMoment(sc->influence, 2) * delta * delta * delta);
   default:
     return 3 * E / (PETSC_PI * PDInfluenceMoment(sc->influence, 3) * delta * delta * delta * delta);
   }
+}
+
+/* Young's modulus of the lattice's bulk along a lattice axis over the continuum model's, for bonds with the
+   continuum micromodulus. A bulk node's strain energy under a homogeneous strain eps is
+   1/2 eps:C:eps with C_abcd = 1/2 sum_j c omega beta V |xi| e_a e_b e_c e_d over its stencil. The stencil
+   has the symmetry of the cube (square in 2D), so C has two constants, C11 = C_xxxx and C12 = C_xxyy
+   (= C_xyxy, bond-based), and uniaxial stress along an axis gives E_lattice = (C11 - C12)(C11 + 2 C12) /
+   (C11 + C12) in 3D, (C11^2 - C12^2) / C11 in 2D. The continuum's is E (3D, plane stress) or E / (1 - nu^2)
+   = 16 E / 15 (plane strain, nu = 1/4). One-point quadrature over the stencil misses the horizon's curved
+   edge: the ratio is 0.74 to 0.85 in 3D for m = 3 to 4, and it does not tend to 1 under refinement at a
+   fixed m (docs/calibration.md). */
+PetscReal PDLatticeStiffnessRatio(const PDScene *sc) {
+  const PetscReal m = sc->horizon_ratio, c = ContinuumMicromodulus(sc, 1, PETSC_TRUE);
+  const PetscInt  R = (PetscInt)PetscFloorReal(m) + 1, Rz = sc->dim == 3 ? R : 0;
+  PetscReal       c11 = 0, c12 = 0, Elat;
+
+  for (PetscInt i = -R; i <= R; i++)
+    for (PetscInt j = -R; j <= R; j++)
+      for (PetscInt k = -Rz; k <= Rz; k++) {
+        const PetscInt n2 = i * i + j * j + k * k;
+        PetscReal      len, w;
+        if (n2 == 0 || PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
+        len = PetscSqrtReal((PetscReal)n2);
+        w   = 0.5 * c * PDInfluenceValue(sc->influence, len, m) * PDFamilyPartialVolume(m, n2, sc->partial_volume) * len;
+        c11 += w * (i * i) * (i * i) / (PetscReal)(n2 * n2);
+        c12 += w * (i * i) * (j * j) / (PetscReal)(n2 * n2);
+      }
+  Elat = sc->dim == 3 ? (c11 - c12) * (c11 + 2 * c12) / (c11 + c12) : (c11 * c11 - c12 * c12) / c11;
+  return Elat / (sc->model == PD_MODEL_PLANE_STRAIN ? 16.0 / 15.0 : 1.0);
+}
+
+/* The bond constant c0 of material modulus E: the continuum micromodulus, divided by the lattice's stiffness
+   ratio under -pd_calibration stencil so that the lattice's bulk has modulus E along its axes. */
+PetscReal PDMicromodulus(const PDScene *sc, PetscReal E) {
+  const PetscReal c = ContinuumMicromodulus(sc, E, PETSC_FALSE);
+  return sc->calibration == PD_CALIBRATION_STENCIL ? c / PDLatticeStiffnessRatio(sc) : c;
 }
 
 /* The fracture energy the lattice releases across a plane, over the continuum value (Sec. 5.3's

@@ -69,6 +69,13 @@ const PDOptionSpec PDOptionSchema[] = {
      .help =
          "Surface correction: the family volume counts neighbour cells whole, as the Hobbs thesis's code does (bulk lambda 1.065 "
          "instead of 1.19; bulk bonds 11 % softer and weaker); the 3D Gregoire scenes set it to reproduce the thesis (docs/softening.md)"},
+    {.name   = "-pd_calibration",
+     .type   = PD_OPTION_ENUM,
+     .values = PDCalibrationNames,
+     .def    = "continuum",
+     .help   = "Bond constants: continuum (the micromodulus of the continuum integral and the analytic horizon volume in the surface "
+               "correction, the thesis' convention) or stencil (scaled so that the lattice's own bulk Young's modulus along an axis "
+               "is E, and the surface correction relative to the lattice's bulk family volume; docs/calibration.md)"},
     {.name = "-pd_sc_correction",
      .type = PD_OPTION_BOOL,
      .def  = "true",
