@@ -98,13 +98,15 @@ typedef struct {
   PDGeometry where;
 } PDVoid;
 
-/* A straight steel bar along a lattice axis (docs/reinforcement.md). Its line is laid on the nearest line of
-   nodes; every pair of consecutive nodes on it carries a bar segment of axial stiffness E_s A_s and yield
-   force f_y A_s beside the concrete bond of the same pair (perfect bond: the bar shares the nodes). */
+/* A straight steel bar along a lattice direction (docs/reinforcement.md): an axis, a diagonal, or any
+   lattice offset within the horizon. Its line is laid on the chain of nodes from the node nearest to its
+   start, one offset apart; every pair of consecutive nodes on it carries a bar segment of axial stiffness
+   E_s A_s and yield force f_y A_s beside the concrete bond of the same pair (perfect bond: the bar shares
+   the nodes). */
 typedef struct {
   char      option[32];
-  PetscReal line[6];   /* end points, x,y,z each; they differ along exactly one axis */
-  PetscInt  axis;      /* that axis */
+  PetscReal line[6];   /* end points, x,y,z each */
+  PetscInt  step[3];   /* the lattice offset between consecutive nodes of its chain, pointing from start to end */
   PetscReal diameter;  /* m */
   PetscInt  count;     /* identical bars lumped on the line (across a 2D model's thickness) */
   PetscReal E, fy;     /* Pa */

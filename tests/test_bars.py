@@ -47,6 +47,33 @@ def axial():
         check(s["yielded_segments"] == s["segments"], "every segment yielded (%d)" % s["yielded_segments"])
 
 
+def diagonal():
+    # Bars along lattice directions other than the axes: a face diagonal (1, 0, 1) in 3D and a (2, 1) bar in
+    # plane stress, in the soft prism (concrete E = 1e3 Pa), the far face moved along the bar: the force
+    # against the elongation of the node chain is the nominal bar's, elastic, at yield and hardening (1e-4,
+    # as for the axes).
+    common = ["-pd_name", "diagonal", "-pd_dx", "0.02", "-pd_E", "1e3", "-pd_law", "elastic", "-pd_bar0_diameter", "0.012",
+              "-pd_bar0_hardening", "0.02", "-pd_region0_kind", "support", "-pd_region1_kind", "displacement", "-pd_steps", "10",
+              "-ksp_rtol", "1e-12"]
+    cases = {"3d (1, 0, 1)": (["-pd_domain", "0,0,0,0.4,0.1,0.4", "-pd_bar0_line", "0.01,0.05,0.01,0.39,0.05,0.39",
+                               "-pd_region0_box", "0,0,0,0,0.1,0.4", "-pd_region0_dofs", "x,y,z", "-pd_region1_box", "0.4,0,0,0.4,0.1,0.4",
+                               "-pd_region1_dofs", "x,y,z", "-pd_region1_displacement", "0.002,0,0.002"], 19, math.sqrt(2) * 0.02),
+             "plane stress (2, 1)": (["-pd_model", "plane_stress", "-pd_thickness", "0.1", "-pd_domain", "0,0,0.38,0.2",
+                                      "-pd_bar0_line", "0.01,0.01,0.37,0.19", "-pd_region0_box", "0,0,0,0.2", "-pd_region0_dofs", "x,y",
+                                      "-pd_region1_box", "0.38,0,0.38,0.2", "-pd_region1_dofs", "x,y", "-pd_region1_displacement",
+                                      "0.004,0.002"], 9, math.sqrt(5) * 0.02)}
+    for name, (geo, nseg, step) in cases.items():
+        r = run(None, *(common + geo))
+        length = nseg * step
+        worst = max(rel(x["load_N"], expected(x["disp_m"] / length, 0.02)) for x in r.curve)
+        s = r.summary["bars"]
+        check(s["segments"] == nseg and s["yielded_segments"] == nseg, "%s: %d segments, all yielded" % (name, s["segments"]))
+        check(worst < 1e-4, "%s: force within %.1e of the nominal bar's over %d steps (1e-4)" % (name, worst, len(r.curve)))
+    # a bar between lattice directions is refused, naming its option
+    r = run("bar_prism", "-pd_bar0_line", "0,0.05,0.05,0.4,0.09,0.05", expect_ok=False)
+    check(r.returncode == 2 and "-pd_bar0_line" in r.stderr and "lattice direction" in r.stderr, "a bar off the lattice directions is bad input")
+
+
 def notch():
     # Cut through at mid-length, the prism hangs on its bar: the bar's segment across the cut is kept without
     # concrete, and once it yields the load stays at f_y A_s exactly, at any dx (1e-9: round-off).
@@ -125,4 +152,4 @@ def stuttgart():
 
 
 if __name__ == "__main__":
-    {"axial": axial, "notch": notch, "mpi": mpi, "restart": restart, "stuttgart": stuttgart}[sys.argv[1]]()
+    {"axial": axial, "diagonal": diagonal, "notch": notch, "mpi": mpi, "restart": restart, "stuttgart": stuttgart}[sys.argv[1]]()

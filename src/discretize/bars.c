@@ -1,29 +1,64 @@
-/* Steel bar segments on the lattice (docs/reinforcement.md). A bar's line is laid on the nearest line of
-   nodes along its axis; each pair of consecutive nodes on it within the bar's extent is a segment, an
-   axial member of stiffness E A_s and yield force f_y A_s exactly, whatever dx. */
+/* Steel bar segments on the lattice (docs/reinforcement.md). A bar's line is laid on a chain of nodes one
+   lattice offset (PDBar.step) apart, from the node nearest to its start; each pair of consecutive nodes
+   of the chain within the bar's ends is a segment, an axial member of stiffness E A_s and yield force
+   f_y A_s exactly, whatever dx. */
 #include "pd_lattice.h"
 
-/* The node line of bar b: the nearest node indices across its axis (line[a] for a != axis), and the first
-   and last node index along it within the bar's ends. */
-static void NodeLine(const PDLattice *lat, const PDBar *b, PetscInt line[3], PetscInt *first, PetscInt *last) {
-  const PetscInt  a  = b->axis;
-  const PetscReal lo = (PetscMin(b->line[a], b->line[3 + a]) - lat->origin[a]) / lat->dx;
-  const PetscReal hi = (PetscMax(b->line[a], b->line[3 + a]) - lat->origin[a]) / lat->dx;
+/* The chain of bar b: its base node's indices (the lattice node nearest to the bar's start) and the range
+   of k for which base + k step lies within the bar's ends (projected on its line) and in the lattice. */
+static void Chain(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscInt *kmin, PetscInt *kmax) {
+  PetscReal u[3], len = 0, ls = 0, t0 = 0;
+
   for (PetscInt c = 0; c < 3; c++) {
     const PetscInt near = (PetscInt)PetscFloorReal((b->line[c] - lat->origin[c]) / lat->dx + 0.5);
-    line[c]             = c < lat->dim ? PetscMin(PetscMax(near, 0), lat->n[c] - 1) : 0;
+    base[c]             = c < lat->dim ? PetscMin(PetscMax(near, 0), lat->n[c] - 1) : 0;
+    u[c]                = b->line[3 + c] - b->line[c];
+    len += u[c] * u[c];
+    ls += (PetscReal)(b->step[c] * b->step[c]);
   }
-  *first = PetscMax(0, (PetscInt)PetscCeilReal(lo - 1e-9));
-  *last  = PetscMin(lat->n[a] - 1, (PetscInt)PetscFloorReal(hi + 1e-9));
+  len = PetscSqrtReal(len);
+  ls  = PetscSqrtReal(ls) * lat->dx; /* one step along the chain (m) */
+  for (PetscInt c = 0; c < 3; c++) t0 += (lat->origin[c] + base[c] * lat->dx - b->line[c]) * u[c] / len;
+  /* node k sits at t0 + k ls along the bar, which holds it for t in [0, len] */
+  *kmin = (PetscInt)PetscCeilReal(-t0 / ls - 1e-9);
+  *kmax = (PetscInt)PetscFloorReal((len - t0) / ls + 1e-9);
+  for (PetscInt c = 0; c < lat->dim; c++) { /* and the lattice holds it */
+    const PetscInt s = b->step[c];
+    if (s > 0) {
+      *kmin = PetscMax(*kmin, -(base[c] / s));
+      *kmax = PetscMin(*kmax, (lat->n[c] - 1 - base[c]) / s);
+    } else if (s < 0) {
+      *kmin = PetscMax(*kmin, -((lat->n[c] - 1 - base[c]) / -s));
+      *kmax = PetscMin(*kmax, base[c] / -s);
+    }
+  }
 }
 
-/* Whether bar b's line holds the lattice node ijk within the bar's ends. */
+/* Whether bar b's chain holds the lattice node ijk within the bar's ends. */
 static PetscBool Holds(const PDLattice *lat, const PDBar *b, const PetscInt ijk[3]) {
-  PetscInt  line[3], first, last;
-  PetscBool on = PETSC_TRUE;
-  NodeLine(lat, b, line, &first, &last);
-  for (PetscInt c = 0; c < 3 && on; c++) on = c == b->axis ? (ijk[c] >= first && ijk[c] <= last) : ijk[c] == line[c];
-  return on;
+  PetscInt base[3], kmin, kmax, r[3], rs = 0, s2 = 0, k;
+
+  Chain(lat, b, base, &kmin, &kmax);
+  for (PetscInt c = 0; c < 3; c++) {
+    r[c] = ijk[c] - base[c];
+    rs += r[c] * b->step[c];
+    s2 += b->step[c] * b->step[c];
+  }
+  if (rs % s2) return PETSC_FALSE;
+  k = rs / s2;
+  for (PetscInt c = 0; c < 3; c++)
+    if (r[c] != k * b->step[c]) return PETSC_FALSE;
+  return k >= kmin && k <= kmax ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Whether bar b has a segment on the pair of nodes with lattice indices p and q. */
+static PetscBool SegmentOf(const PDLattice *lat, const PDBar *b, const PetscInt p[3], const PetscInt q[3]) {
+  PetscBool fwd = PETSC_TRUE, back = PETSC_TRUE;
+  for (PetscInt c = 0; c < 3; c++) {
+    fwd  = fwd && q[c] - p[c] == b->step[c] ? PETSC_TRUE : PETSC_FALSE;
+    back = back && p[c] - q[c] == b->step[c] ? PETSC_TRUE : PETSC_FALSE;
+  }
+  return (fwd || back) && Holds(lat, b, p) && Holds(lat, b, q) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, PetscInt gj) {
@@ -32,10 +67,8 @@ PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, Petsc
   if (!sc->nbars) return -1;
   PDLatticeNodeIndices(lat, gi, p);
   PDLatticeNodeIndices(lat, gj, q);
-  for (PetscInt k = 0; k < sc->nbars; k++) {
-    const PDBar *b = &sc->bar[k];
-    if (PetscAbsInt(p[b->axis] - q[b->axis]) == 1 && Holds(lat, b, p) && Holds(lat, b, q)) return k;
-  }
+  for (PetscInt k = 0; k < sc->nbars; k++)
+    if (SegmentOf(lat, &sc->bar[k], p, q)) return k;
   return -1;
 }
 
@@ -49,34 +82,35 @@ PetscInt PDBarHoldingNode(const PDScene *sc, const PDLattice *lat, PetscInt gid)
 }
 
 PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds *bd) {
-  PetscInt mine = 0, n = 0;
+  PetscInt mine = 0, n = 0, clash = 0; /* clash: the first bar of a shared pair times PD_MAX_BARS plus the second, plus 1 */
 
   PetscFunctionBeginUser;
   if (!sc->nbars) PetscFunctionReturn(0);
-  /* two bars sharing a pair of nodes would give it two segments: one bar with both areas is what is meant */
   for (PetscInt k = 0; k < sc->nbars; k++) {
-    const PDBar *b = &sc->bar[k];
-    PetscInt     lb[3], fb, eb;
-    NodeLine(lat, b, lb, &fb, &eb);
-    PetscCheck(eb > fb, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_line: the bar holds no two nodes of the lattice (dx = %g m)", b->option,
-               (double)lat->dx);
-    for (PetscInt l = 0; l < k; l++) {
-      const PDBar *c = &sc->bar[l];
-      PetscInt     lc[3], fc, ec;
-      PetscBool    same = b->axis == c->axis ? PETSC_TRUE : PETSC_FALSE;
-      NodeLine(lat, c, lc, &fc, &ec);
-      for (PetscInt a = 0; a < 3 && same; a++)
-        if (a != b->axis) same = lb[a] == lc[a] ? PETSC_TRUE : PETSC_FALSE;
-      PetscCheck(!same || PetscMax(fb, fc) >= PetscMin(eb, ec), lat->comm, PETSC_ERR_USER_INPUT,
-                 "Options %s_line and %s_line: the two bars lie on one line of nodes and overlap; give one bar with _count, or move one "
-                 "by at least dx = %g m",
-                 b->option, c->option, (double)lat->dx);
-    }
+    PetscInt base[3], kmin, kmax;
+    Chain(lat, &sc->bar[k], base, &kmin, &kmax);
+    PetscCheck(kmax > kmin, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_line: the bar holds no two nodes of the lattice (dx = %g m)",
+               sc->bar[k].option, (double)lat->dx);
   }
   /* the bar of each bond (or -1) in seg first, then its segment index */
   PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->seg));
-  for (PetscInt e = 0; e < bd->nbonds; e++)
-    if ((bd->seg[e] = PDBarOfPair(sc, lat, lat->gid[bd->a[e]], lat->gid[bd->b[e]])) >= 0) n++;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    PetscInt p[3], q[3];
+    PDLatticeNodeIndices(lat, lat->gid[bd->a[e]], p);
+    PDLatticeNodeIndices(lat, lat->gid[bd->b[e]], q);
+    bd->seg[e] = -1;
+    for (PetscInt k = 0; k < sc->nbars; k++) {
+      if (!SegmentOf(lat, &sc->bar[k], p, q)) continue;
+      /* two bars sharing a pair of nodes would give it two segments: one bar with both areas is what is meant */
+      if (bd->seg[e] >= 0) clash = PetscMax(clash, bd->seg[e] * PD_MAX_BARS + k + 1);
+      bd->seg[e] = k;
+    }
+    if (bd->seg[e] >= 0) n++;
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &clash, 1, MPIU_INT, MPI_MAX, lat->comm));
+  PetscCheck(!clash, lat->comm, PETSC_ERR_USER_INPUT,
+             "Options %s_line and %s_line: the two bars share a pair of nodes; give one bar with _count, or move one by at least dx = %g m",
+             sc->bar[(clash - 1) / PD_MAX_BARS].option, sc->bar[(clash - 1) % PD_MAX_BARS].option, (double)lat->dx);
   bd->nseg = n;
   PetscCall(PetscMalloc3(PetscMax(1, n), &bd->seg_bond, PetscMax(1, n), &bd->seg_bar, PetscMax(1, n), &bd->seg_coef));
   n = 0;

@@ -1,7 +1,8 @@
-/* Steel bars of a scene (-pd_barK_*): straight, along a lattice axis, numbered without gaps; a bar
+/* Steel bars of a scene (-pd_barK_*): straight, along a lattice direction, numbered without gaps; a bar
    exists once its line is given. */
 #include "option_values.h"
 #include "scene_read.h"
+#include "pd_lattice.h"
 
 static PetscErrorCode BarReal(PetscOptionItems *PetscOptionsObject, PDScene *sc, const PDBar *b, const char *name, PetscReal *v) {
   char opt[64];
@@ -12,10 +13,57 @@ static PetscErrorCode BarReal(PetscOptionItems *PetscOptionsObject, PDScene *sc,
   PetscFunctionReturn(0);
 }
 
+/* The lattice offset a bar's chain of nodes steps by: of the offsets within the horizon, the one closest
+   in direction to the bar (the shortest of those equally close, so that an axis gives (1, 0, 0)). The
+   chain keeps the bar's direction only if the bar runs along that offset: its far end may lie at most
+   half a spacing off the line the chain follows, the rounding every bar position gets. */
+static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
+  const PetscReal m = sc->horizon_ratio;
+  const PetscInt  R = (PetscInt)PetscFloorReal(m) + 1, Rz = sc->dim == 3 ? R : 0;
+  PetscReal       d[3], len = 0, best = -2, off, along = 0;
+  PetscInt        bn2 = 0;
+
+  PetscFunctionBeginUser;
+  for (PetscInt a = 0; a < 3; a++) {
+    d[a] = (b->line[3 + a] - b->line[a]) / sc->dx;
+    len += d[a] * d[a];
+  }
+  len = PetscSqrtReal(len);
+  PetscCheck(len >= 1 - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: a bar spans at least one grid spacing (%g m) to hold a segment, this one %g m", opt, (double)sc->dx,
+             (double)(len * sc->dx));
+  for (PetscInt i = -R; i <= R; i++)
+    for (PetscInt j = -R; j <= R; j++)
+      for (PetscInt k = -Rz; k <= Rz; k++) {
+        const PetscInt n2 = i * i + j * j + k * k;
+        PetscReal      c;
+        if (n2 == 0 || PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
+        c = (i * d[0] + j * d[1] + k * d[2]) / (len * PetscSqrtReal((PetscReal)n2));
+        if (c > best + 1e-12 || (c > best - 1e-12 && n2 < bn2)) {
+          best       = c;
+          bn2        = n2;
+          b->step[0] = i;
+          b->step[1] = j;
+          b->step[2] = k;
+        }
+      }
+  along = len * best;
+  off   = PetscSqrtReal(PetscMax(0, len * len - along * along));
+  PetscCheck(off <= 0.5 + 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: the bar does not run along a lattice direction within the horizon: the nearest, (%" PetscInt_FMT ", %" PetscInt_FMT
+             ", %" PetscInt_FMT "), would leave its far end %g m off the bar (at most dx/2 = %g m)",
+             opt, b->step[0], b->step[1], b->step[2], (double)(off * sc->dx), (double)(0.5 * sc->dx));
+  PetscCheck(along >= PetscSqrtReal((PetscReal)bn2) - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: the bar is shorter than one step (%g m) of its lattice direction (%" PetscInt_FMT ", %" PetscInt_FMT
+             ", %" PetscInt_FMT ") and would hold no segment",
+             opt, (double)(PetscSqrtReal((PetscReal)bn2) * sc->dx), b->step[0], b->step[1], b->step[2]);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
   PDBar    *b = &sc->bar[k];
   char      opt[64];
-  PetscInt  n = 6, nmove = 0, d = sc->dim;
+  PetscInt  n = 6, d = sc->dim;
   PetscReal v[6] = {0, 0, 0, 0, 0, 0};
   PetscBool set;
 
@@ -31,19 +79,10 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
   }
   for (PetscInt a = 0; a < sc->dim; a++) {
     const PetscReal lo = PetscMin(b->line[a], b->line[3 + a]), hi = PetscMax(b->line[a], b->line[3 + a]);
-    if (hi - lo > 1e-9 * sc->dx) {
-      b->axis = a;
-      nmove++;
-    }
     PetscCheck(lo >= sc->domain[a] - 1e-9 * sc->dx && hi <= sc->domain[3 + a] + 1e-9 * sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
                "Option %s: the bar leaves the domain -pd_domain along %c", opt, (char)('x' + a));
   }
-  PetscCheck(nmove == 1, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             "Option %s: a bar runs along one lattice axis (its ends differ in exactly one coordinate), these differ in %" PetscInt_FMT,
-             opt, nmove);
-  PetscCheck(PetscAbsReal(b->line[3 + b->axis] - b->line[b->axis]) >= sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             "Option %s: a bar spans at least one grid spacing (%g m) to hold a segment, this one %g m", opt, (double)sc->dx,
-             (double)PetscAbsReal(b->line[3 + b->axis] - b->line[b->axis]));
+  PetscCall(BarStep(sc, b, opt));
   PetscCall(BarReal(PetscOptionsObject, sc, b, "_diameter", &b->diameter));
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_diameter", b->option));
   PetscCheck(b->diameter > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a bar", opt);

@@ -73,9 +73,10 @@ const PDOptionSpec PDOptionSchema[] = {
      .type   = PD_OPTION_ENUM,
      .values = PDCalibrationNames,
      .def    = "continuum",
-     .help   = "Bond constants: continuum (the micromodulus of the continuum integral and the analytic horizon volume in the surface "
-               "correction, the thesis' convention) or stencil (scaled so that the lattice's own bulk Young's modulus along an axis "
-               "is E, and the surface correction relative to the lattice's bulk family volume; docs/calibration.md)"},
+     .help   = "Bond constants: continuum (the micromodulus of the continuum integral, and the volume-method surface correction with "
+               "the horizon's analytic volume: the thesis' convention) or stencil (the micromodulus divided by the lattice bulk's "
+               "Young's modulus ratio, so that the bulk has modulus E along the lattice axes, and surfaces corrected by the directional "
+               "energy method relative to a bulk node; -pd_sc_whole_cells does not apply; docs/calibration.md)"},
     {.name = "-pd_sc_correction",
      .type = PD_OPTION_BOOL,
      .def  = "true",
@@ -280,9 +281,9 @@ const PDOptionSpec PDOptionSchema[] = {
      .type     = PD_OPTION_REALS,
      .unit     = "m",
      .def_note = "required",
-     .help = "Steel bar: its end points x,y,z,x,y,z (x,y,x,y in 2D), different along one lattice axis only; laid on the nearest line of "
-             "nodes, whose "
-             "consecutive pairs carry the bar's segments (perfect bond)"},
+     .help     = "Steel bar: its end points x,y,z,x,y,z (x,y,x,y in 2D), along a lattice direction within the horizon (an axis, a "
+                 "diagonal, (2,1,0), ...; the far end at most dx/2 off it); laid on the chain of nodes one such offset apart from the node "
+                 "nearest to its start, whose consecutive pairs carry the bar's segments"},
     {.name     = "_diameter",
      .family   = BAR,
      .type     = PD_OPTION_REAL,
