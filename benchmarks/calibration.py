@@ -5,10 +5,17 @@ of its middle third against F / (E A)) and the cantilever (options/cantilever.op
 Timoshenko with nu = 1/4), at dx = 20, 10, 5 and 2.5 mm for m = 3, pi and 4, and the lattice's bulk
 stiffness ratio (summary.json) that the stencil calibration divides out.
 
+With --softening, the Gregoire D = 50 mm beams (options/gregoire_d50_{un,fn,hn}.opts, non-linear law,
+the same E, f_t and G_F for all three) traced to CMOD = 0.2 mm at dx = 5 and 2.5 mm: their peaks under
+each calibration against the experimental envelopes, and the change between the two spacings. The
+continuum calibration's dx = 2.5 mm peaks are those of docs/benchmarks/gregoire_dx2.5.json (the shipped
+scenes, `benchmarks/gregoire.py`), not run again.
+
 Results go to docs/benchmarks/calibration.json, one entry per run, kept between invocations; the table
 docs/benchmarks/calibration.md and the plot calibration.png are written from it.
 
-Usage: benchmarks/calibration.py [--dx 0.02 0.01 0.005 0.0025] [--calibration continuum stencil] [--ranks 2] [--report]
+Usage: benchmarks/calibration.py [--dx 0.02 0.01 0.005 0.0025] [--calibration continuum stencil] [--ranks 2]
+       [--softening --beams un fn hn] [--report]
 """
 import argparse
 import math
@@ -19,11 +26,13 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, store_result  # noqa: E402
+from common import EXE, OUT, RESULTS_DIR, ROOT, experiment, load_results, run_timed, store_result  # noqa: E402
 
 DATA = os.path.join(RESULTS_DIR, "calibration.json")
 RATIOS = {"3": 3.0, "pi": math.pi, "4": 4.0}
 SCENES = ("bar_tension", "cantilever")
+BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
+EXPERIMENT = {"un": "gregoire2013_d50_un_load_cmod.csv", "hn": "gregoire2013_d50_hn_load_cmod.csv"}
 
 
 def timoshenko(P=1e4, L=1.0, E=30e9, b=0.1, h=0.1, nu=0.25, k=5.0 / 6.0):
@@ -68,6 +77,70 @@ def measure(scene, dx, m, calibration, ranks):
             "wall_s": wall, "ranks": ranks, "stiffness_ratio": s.get("lattice_stiffness_ratio")}
 
 
+def measure_softening(beam, dx, calibration):
+    import csv
+    import json
+    out = tempfile.mkdtemp(prefix="pdcal_")
+    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_output_dir", out, "-pd_dx", repr(dx),
+           "-pd_calibration", calibration]
+    with open(os.path.join(out, "log.txt"), "w") as log:
+        code, wall, cpu, _ = run_timed(cmd, 7200, log)
+    s = json.load(open(os.path.join(out, "summary.json")))
+    with open(os.path.join(out, "curve.csv")) as f:
+        peak = max(abs(float(r["load_N"])) for r in csv.DictReader(f))
+    return {"status": s["status"], "peak_N": peak, "nodes": s["nodes"], "bonds": s["bonds"], "newton_its": s["newton_its"], "wall_s": wall,
+            "cpu_s": cpu, "stiffness_ratio": s.get("lattice_stiffness_ratio")}
+
+
+def envelope(beam):
+    """Largest loads (N) of the experimental mean, lower and upper curves, or None without data."""
+    if beam not in EXPERIMENT:
+        return None
+    rows = experiment(EXPERIMENT[beam])
+    return tuple(1e3 * max(r[c] for r in rows) for c in (1, 2, 3))
+
+
+def softening_rows(res):
+    """Peaks by beam, calibration and spacing: the runs in res, and the continuum calibration's dx = 2.5 mm
+    peaks from gregoire_dx2.5.json."""
+    peaks = {}
+    for k, r in res.items():
+        if k.startswith("gregoire "):
+            _, beam, dx, cal = k.split(" ")
+            peaks[(beam[5:], cal, float(dx[3:]))] = r
+    fine = load_results(os.path.join(RESULTS_DIR, "gregoire_dx2.5.json"))
+    for beam in BEAMS:
+        r = fine.get("%s/nonlinear/dx=0.0025/default" % beam)
+        if r and (beam, "continuum", 0.0025) not in peaks:
+            peaks[(beam, "continuum", 0.0025)] = {"status": r["status"], "peak_N": r["peak"], "source": "gregoire_dx2.5.json"}
+    return peaks
+
+
+def softening_report(res, lines):
+    peaks = softening_rows(res)
+    if not peaks:
+        return
+    lines += ["## Softening: the D = 50 mm beams under each calibration", "",
+              "Peak load (N) at dx = 5 and 2.5 mm, its change between them, and the experimental envelope (largest loads of",
+              "the lower and upper curves in data/). `*`: from `gregoire_dx2.5.json` (`benchmarks/gregoire.py`).", "",
+              "| beam | calibration | peak at 5 mm | peak at 2.5 mm | change | experiment (min - max) | Newton at 2.5 mm | wall at 2.5 mm (s) |",
+              "|---|---|---|---|---|---|---|---|"]
+    for beam in BEAMS:
+        env = envelope(beam)
+        for cal in ("continuum", "stencil"):
+            a, b = peaks.get((beam, cal, 0.005)), peaks.get((beam, cal, 0.0025))
+            if not a and not b:
+                continue
+            fa = "%.0f" % a["peak_N"] if a else "-"
+            fb = ("%.0f" % b["peak_N"] + ("*" if b.get("source") else "")) if b else "-"
+            ch = "%+.1f %%" % (100 * (b["peak_N"] / a["peak_N"] - 1)) if a and b else "-"
+            ex = "%.0f - %.0f" % (env[1], env[2]) if env else "-"
+            nb = str(b["newton_its"]) if b and "newton_its" in b else "-"
+            wb = "%.0f" % b["wall_s"] if b and "wall_s" in b else "-"
+            lines.append("| %s | %s | %s | %s | %s | %s | %s | %s |" % (BEAMS[beam], cal, fa, fb, ch, ex, nb, wb))
+    lines.append("")
+
+
 def key(scene, dx, m, calibration):
     return "%s dx=%g m=%s %s" % (scene, dx, m, calibration)
 
@@ -75,6 +148,8 @@ def key(scene, dx, m, calibration):
 def report(res):
     rows = []
     for k, r in res.items():
+        if k.startswith("gregoire "):
+            continue
         scene, dx, m, cal = k.split(" ")
         rows.append((SCENES.index(scene), -float(dx[3:]), list(RATIOS).index(m[2:]), cal, scene, float(dx[3:]), m[2:], r))
     rows.sort()
@@ -95,6 +170,7 @@ def report(res):
         lines.append("| %s | %g | %s | %s | %d | %d | %+.2f %% | %s | %.1f |" % (scene, 1e3 * dx, m, cal, r["nodes"], r["bonds"], 100 * r["error"],
                                                                               ratio, r["wall_s"]))
     lines += ["", "![error against spacing](calibration.png)", ""]
+    softening_report(res, lines)
     with open(os.path.join(OUT, "calibration.md"), "w") as f:
         f.write("\n".join(lines))
     try:
@@ -129,9 +205,20 @@ def main():
     ap.add_argument("--calibration", nargs="+", default=["continuum", "stencil"])
     ap.add_argument("--scenes", nargs="+", default=list(SCENES))
     ap.add_argument("--ranks", type=int, default=2, help="ranks for dx below 5 mm")
+    ap.add_argument("--softening", action="store_true", help="the D = 50 mm beams instead of the elastic scenes")
+    ap.add_argument("--beams", nargs="+", default=list(BEAMS))
+    ap.add_argument("--results", default=DATA, help="where the runs are stored (merged by hand into calibration.json afterwards)")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
-    if not a.report:
+    if a.softening and not a.report:
+        for beam in a.beams:
+            for dx in a.dx:
+                for cal in a.calibration:
+                    k = "gregoire beam=%s dx=%g %s" % (beam, dx, cal)
+                    r = measure_softening(beam, dx, cal)
+                    print(k, r, flush=True)
+                    store_result(a.results, k, r)
+    elif not a.report:
         for scene in a.scenes:
             for dx in a.dx:
                 for m in RATIOS:
