@@ -213,6 +213,9 @@ def calibration():
     e20, e10 = (bar_strain(run("bar_tension", "-pd_dx", dx, "-pd_calibration", "stencil")) / exact - 1 for dx in (0.02, 0.01))
     print("3D bar, stencil calibration: error %+.3f %% at dx = 20 mm, %+.3f %% at 10 mm" % (100 * e20, 100 * e10))
     check(abs(e10) < 0.6 * abs(e20), "3D: the error falls by about half from dx = 20 to 10 mm")
+    # the directional correction's node sums cross rank boundaries: 3 ranks give 1 rank's strain
+    one, three = (bar_strain(run("bar_tension", "-pd_dx", 0.02, "-pd_calibration", "stencil", "-ksp_rtol", "1e-12", ranks=n)) for n in (1, 3))
+    check(rel(three, one) < 1e-10, "3 ranks: strain %.12e, 1 rank %.12e" % (three, one))
 
 
 if __name__ == "__main__":
