@@ -5,8 +5,9 @@
 #include "pd_model.h"
 
 typedef struct {
-  PetscInt  step, newton_its, ksp_its, broken_bonds;
-  PetscReal lambda, load, disp, cmod, wall;
+  PetscInt   step, newton_its, ksp_its;
+  PetscInt64 broken_bonds;
+  PetscReal  lambda, load, disp, cmod, wall;
   /* energy (J): work of the external forces and reactions, strain energy in the bonds, dissipated by
      damage, kinetic and removed by damping (the last two in explicit mode) */
   PetscReal external, stored, dissipated, kinetic, damped;

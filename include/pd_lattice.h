@@ -49,7 +49,7 @@ typedef struct {
    A bond between two ranks is held by both; each adds only to its own rows. */
 typedef struct {
   PetscInt   nbonds;
-  PetscInt   nbonds_global; /* every bond counted once */
+  PetscInt64 nbonds_global; /* every bond counted once (64-bit: a global count passes 2^31 from about 30 M nodes) */
   PetscInt  *a, *b;         /* [nbonds] local node indices, a owned */
   PetscReal *coef;          /* [nbonds] c * omega * beta * lambda * V_a * V_b (N per unit stretch) */
   PetscInt  *material;      /* [nbonds] material governing the bond */

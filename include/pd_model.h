@@ -36,8 +36,8 @@ typedef struct {
   PetscReal     *dissipated_n;              /* [nseg] energy the segment dissipated (J): s_y E A L0 times its accumulated
                                                plastic stretch, and the elastic energy it held when it broke */
   PetscInt   yielded;                       /* bar segments with plastic stretch, or broken (global, counted once) */
-  PetscInt   broken;                        /* bonds broken (global, counted once) at the last accepted step */
-  PetscInt   softening_bonds;               /* bonds on the softening branch, not broken (global) */
+  PetscInt64 broken;                        /* bonds broken (global, counted once) at the last accepted step */
+  PetscInt64 softening_bonds;               /* bonds on the softening branch, not broken (global) */
   PetscInt   nregularised, max_regularised; /* free dofs left without stiffness by damage */
   Vec        f_ref;                         /* external force at load factor 1 (global) */
   Vec        u_ref;                         /* prescribed displacement at load factor 1 (global, zero on free dofs) */

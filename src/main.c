@@ -114,7 +114,7 @@ static PetscErrorCode Describe(Run *r) {
   PetscFunctionBeginUser;
   PetscCall(PDSceneView(&r->sc, PETSC_VIEWER_STDOUT_(r->comm)));
   PetscCall(PetscPrintf(r->comm,
-                        "  %" PetscInt_FMT " nodes, %" PetscInt_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT
+                        "  %" PetscInt_FMT " nodes, %" PetscInt64_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT
                         " constrained dofs, set-up %.3f s\n",
                         r->lat.nglobal, r->bonds.nbonds_global, r->bonds.ncut, r->model.nconstrained, (double)r->rec.t_setup));
   PetscCall(PetscPrintf(r->comm, "  effects:"));

@@ -304,7 +304,10 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, cut, keep_lambda));
   PetscCall(PetscFree(beta));
   PetscCall(PetscFree(cut));
-  PetscCall(MPIU_Allreduce(&nonce, &bd->nbonds_global, 1, MPIU_INT, MPI_SUM, lat->comm));
+  {
+    PetscInt64 n = nonce;
+    PetscCall(MPIU_Allreduce(&n, &bd->nbonds_global, 1, MPIU_INT64, MPI_SUM, lat->comm));
+  }
   PetscCall(MPIU_Allreduce(&ncut_local, &bd->ncut, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(PDBondsSetUpBars(sc, lat, bd));
   PetscCall(CheckOnePiece(sc, lat, bd));

@@ -269,7 +269,7 @@ static void RowUnpack(const PetscScalar *a, PDCurveRow *r) {
   r->step         = (PetscInt)PetscRealPart(a[0]);
   r->newton_its   = (PetscInt)PetscRealPart(a[1]);
   r->ksp_its      = (PetscInt)PetscRealPart(a[2]);
-  r->broken_bonds = (PetscInt)PetscRealPart(a[3]);
+  r->broken_bonds = (PetscInt64)PetscRealPart(a[3]);
   r->lambda       = PetscRealPart(a[4]);
   r->load         = PetscRealPart(a[5]);
   r->disp         = PetscRealPart(a[6]);

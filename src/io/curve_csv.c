@@ -26,7 +26,7 @@ PetscErrorCode PDCurveAppend(PDRecord *rec, const PDCurveRow *r) {
   PetscFunctionBeginUser;
   if (!rec->curve) PetscFunctionReturn(0);
   fprintf(rec->curve,
-          "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT
+          "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt64_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT
           ",%.4f,%.10g,%.10g,%.10g,%.10g,%.10g,%" PetscInt_FMT ",%.10g\n",
           r->step, (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its, r->ksp_its,
           (double)r->wall, (double)r->external, (double)r->stored, (double)r->dissipated, (double)r->kinetic, (double)r->damped, r->yielded,

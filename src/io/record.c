@@ -156,7 +156,7 @@ PetscErrorCode PDProgress(MPI_Comm comm, const PDScene *sc, const PDCurveRow *ro
   PetscFunctionBeginUser;
   if (!sc->progress) PetscFunctionReturn(0);
   PetscCall(PetscFPrintf(comm, PETSC_STDERR,
-                         "\r[%s] step %" PetscInt_FMT "  lambda %.4f/%.4g  load %.5g N  disp %.4g m  cmod %.4g m  broken %" PetscInt_FMT
+                         "\r[%s] step %" PetscInt_FMT "  lambda %.4f/%.4g  load %.5g N  disp %.4g m  cmod %.4g m  broken %" PetscInt64_FMT
                          "  newton %" PetscInt_FMT "  %.1f s   %s",
                          sc->name, row->step, (double)row->lambda, (double)sc->lambda_max, (double)row->load, (double)row->disp,
                          (double)row->cmod, row->broken_bonds, row->newton_its, (double)row->wall, last ? "\n" : ""));

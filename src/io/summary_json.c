@@ -192,7 +192,7 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   }
   /* nodes hold material; the lattice's void nodes (pinned, no bonds) are counted apart, and in the dofs */
   PetscCall(PetscFPrintf(comm, fp,
-                         "  \"nodes\": %" PetscInt_FMT ",\n  \"void_nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt_FMT
+                         "  \"nodes\": %" PetscInt_FMT ",\n  \"void_nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt64_FMT
                          ",\n  \"dofs\": %" PetscInt_FMT ",\n",
                          m->lat->nglobal - m->lat->nvoid, m->lat->nvoid, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));
@@ -216,7 +216,7 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n",
                          rec->steps, rec->newton_its, rec->ksp_its));
   PetscCall(PetscFPrintf(comm, fp,
-                         "  \"broken_bonds\": %" PetscInt_FMT ",\n  \"softening_bonds\": %" PetscInt_FMT
+                         "  \"broken_bonds\": %" PetscInt64_FMT ",\n  \"softening_bonds\": %" PetscInt64_FMT
                          ",\n  \"max_bonds_per_iteration\": %" PetscInt_FMT ",\n  \"max_regularised_dofs\": %" PetscInt_FMT ",\n",
                          m->broken, m->softening_bonds, rec->max_events_per_its, m->max_regularised));
   PetscCall(WriteBars(comm, fp, m, rec));

@@ -12,7 +12,7 @@ typedef struct {
   PetscInt       window;     /* checks (every tenth step) in the damage criterion's window */
   PetscInt       still;      /* consecutive checks with damage still */
   PetscInt       aligned;    /* consecutive checks, once still, with velocity along the load */
-  PetscInt       broken_prev;
+  PetscInt64     broken_prev;
   PetscInt       verdict; /* 0 undecided, 1 converged, -1 failed */
   char           why[96];
 } Judge;
@@ -98,7 +98,7 @@ static PetscErrorCode Judge_Monitor(PDExplicit *c, PetscInt step, PetscReal t, V
     if (jd->aligned >= jd->window) {
       jd->verdict = -1;
       PetscCall(PetscSNPrintf(jd->why, sizeof jd->why,
-                              "loaded nodes kept moving along the load (%" PetscInt_FMT " bonds broken, %" PetscInt_FMT " softening)",
+                              "loaded nodes kept moving along the load (%" PetscInt64_FMT " bonds broken, %" PetscInt64_FMT " softening)",
                               m->broken, m->softening_bonds));
     }
   } break;

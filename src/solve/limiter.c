@@ -128,7 +128,7 @@ static PetscBool Softened(const PDModel *m, PetscInt e) {
 /* Broken and softening bonds (global, each bond counted once) from the committed history. */
 PetscErrorCode PDModelCountDamage(PDModel *m) {
   const PDBonds *bd       = m->bonds;
-  PetscInt       count[3] = {0, 0, 0}, total[3]; /* broken, softening, yielded bar segments */
+  PetscInt64     count[3] = {0, 0, 0}, total[3]; /* broken, softening, yielded bar segments */
 
   PetscFunctionBeginUser;
   if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
@@ -143,10 +143,10 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
     else if (Softened(m, e))
       count[1]++;
   }
-  PetscCall(MPIU_Allreduce(count, total, 3, MPIU_INT, MPI_SUM, m->lat->comm));
+  PetscCall(MPIU_Allreduce(count, total, 3, MPIU_INT64, MPI_SUM, m->lat->comm));
   m->broken          = total[0];
   m->softening_bonds = total[1];
-  m->yielded         = total[2];
+  m->yielded         = (PetscInt)total[2];
   PetscFunctionReturn(0);
 }
 
