@@ -132,7 +132,8 @@ def softening_report(res, lines):
         return
     lines += ["## Softening: the D = 50 mm beams under each calibration", "",
               "Peak load (N) at dx = 5 and 2.5 mm, its change between them, and the experimental envelope (largest loads of",
-              "the lower and upper curves in data/). `*`: from `gregoire_dx2.5.json` (`benchmarks/gregoire.py`).", "",
+              "the lower and upper curves in data/). `*`: from `gregoire_dx2.5.json` (`benchmarks/gregoire.py`). `†`: stopped",
+              "(SIGTERM) before CMOD = 0.2 mm, past the peak. Wall times with other runs sharing the two cores.", "",
               "| beam | calibration | peak at 5 mm | peak at 2.5 mm | change | experiment (min - max) | Newton at 2.5 mm | wall at 2.5 mm (s) |",
               "|---|---|---|---|---|---|---|---|"]
     for beam in BEAMS:
@@ -142,7 +143,7 @@ def softening_report(res, lines):
             if not a and not b:
                 continue
             fa = "%.0f" % a["peak_N"] if a else "-"
-            fb = ("%.0f" % b["peak_N"] + ("*" if b.get("source") else "")) if b else "-"
+            fb = ("%.0f" % b["peak_N"] + ("*" if b.get("source") else "") + ("†" if b["status"].startswith("interrupted") else "")) if b else "-"
             ch = "%+.1f %%" % (100 * (b["peak_N"] / a["peak_N"] - 1)) if a and b else "-"
             ex = "%.0f - %.0f" % (env[1], env[2]) if env else "-"
             nb = str(b["newton_its"]) if b and "newton_its" in b else "-"
