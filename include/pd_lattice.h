@@ -14,6 +14,9 @@ typedef enum {
   PD_FAMILY_EDGE, /* exactly at r = delta */
 } PDFamilyMember;
 PDFamilyMember PDFamilyRule(PetscReal m, PetscInt n2);
+/* Walks the family's lattice offsets in lexicographic order of (di, dj, dk), dk = 0 in 2D: st = {0, 0, 0,
+   -1} starts; each call moves st to the next member (di, dj, dk, n2) and returns PETSC_FALSE past the last. */
+PetscBool PDFamilyNext(PetscReal m, PetscInt dim, PetscInt st[4]);
 /* Partial-volume factor of a neighbour n2 grid spacings squared away (PA-PDLAMMPS, THEORY.md Eq. 4.2, in
    units of dx): 1 up to m - 1/2, m + 1/2 - sqrt(n2) beyond, exactly 1/2 on the horizon's edge; 1 when
    partial volumes are off. */

@@ -20,24 +20,38 @@ PetscReal PDFamilyPartialVolume(PetscReal m, PetscInt n2, PetscBool partial_volu
 
 /* Offsets (di, dj, dk) of the bond family, dk = 0 in 2D, in lexicographic order, and the reach along
    one axis. Built once; the neighbour search walks it from every node. */
+PetscBool PDFamilyNext(PetscReal m, PetscInt dim, PetscInt st[4]) {
+  const PetscInt R = (PetscInt)PetscFloorReal(m) + 1, Rz = dim == 3 ? R : 0;
+
+  if (st[3] < 0) { /* start: one before the first offset */
+    st[0] = -R;
+    st[1] = -R;
+    st[2] = -Rz - 1;
+  }
+  for (;;) {
+    if (++st[2] > Rz) {
+      st[2] = -Rz;
+      if (++st[1] > R) {
+        st[1] = -R;
+        if (++st[0] > R) return PETSC_FALSE;
+      }
+    }
+    st[3] = st[0] * st[0] + st[1] * st[1] + st[2] * st[2];
+    if (st[3] > 0 && PDFamilyRule(m, st[3]) != PD_FAMILY_OUT) return PETSC_TRUE;
+  }
+}
+
 static PetscErrorCode BuildStencil(PDLattice *lat, PetscReal m) {
   const PetscInt R = (PetscInt)PetscFloorReal(m) + 1, Rz = lat->dim == 3 ? R : 0;
+  PetscInt       st[4] = {0, 0, 0, -1};
 
   PetscFunctionBeginUser;
   PetscCall(PetscMalloc1(4 * (2 * R + 1) * (2 * R + 1) * (2 * Rz + 1), &lat->stencil));
-  for (PetscInt di = -R; di <= R; di++)
-    for (PetscInt dj = -R; dj <= R; dj++)
-      for (PetscInt dk = -Rz; dk <= Rz; dk++) {
-        const PetscInt n2 = di * di + dj * dj + dk * dk;
-        PetscInt      *st = &lat->stencil[4 * lat->nstencil];
-        if (n2 == 0 || PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
-        st[0]      = di;
-        st[1]      = dj;
-        st[2]      = dk;
-        st[3]      = n2;
-        lat->reach = PetscMax(lat->reach, di);
-        lat->nstencil++;
-      }
+  while (PDFamilyNext(m, lat->dim, st)) {
+    for (PetscInt c = 0; c < 4; c++) lat->stencil[4 * lat->nstencil + c] = st[c];
+    lat->reach = PetscMax(lat->reach, st[0]);
+    lat->nstencil++;
+  }
   PetscFunctionReturn(0);
 }
 

@@ -53,20 +53,16 @@ static PetscReal ContinuumMicromodulus(const PDScene *sc, PetscReal E, PetscBool
    fixed m (docs/calibration.md). */
 PetscReal PDLatticeStiffnessRatio(const PDScene *sc) {
   const PetscReal m = sc->horizon_ratio, c = ContinuumMicromodulus(sc, 1, PETSC_TRUE);
-  const PetscInt  R = (PetscInt)PetscFloorReal(m) + 1, Rz = sc->dim == 3 ? R : 0;
   PetscReal       c11 = 0, c12 = 0, Elat;
+  PetscInt        st[4] = {0, 0, 0, -1};
 
-  for (PetscInt i = -R; i <= R; i++)
-    for (PetscInt j = -R; j <= R; j++)
-      for (PetscInt k = -Rz; k <= Rz; k++) {
-        const PetscInt n2 = i * i + j * j + k * k;
-        PetscReal      len, w;
-        if (n2 == 0 || PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
-        len = PetscSqrtReal((PetscReal)n2);
-        w   = 0.5 * c * PDInfluenceValue(sc->influence, len, m) * PDFamilyPartialVolume(m, n2, sc->partial_volume) * len;
-        c11 += w * (i * i) * (i * i) / (PetscReal)(n2 * n2);
-        c12 += w * (i * i) * (j * j) / (PetscReal)(n2 * n2);
-      }
+  while (PDFamilyNext(m, sc->dim, st)) {
+    const PetscInt  i = st[0], j = st[1], n2 = st[3];
+    const PetscReal len = PetscSqrtReal((PetscReal)n2);
+    const PetscReal w   = 0.5 * c * PDInfluenceValue(sc->influence, len, m) * PDFamilyPartialVolume(m, n2, sc->partial_volume) * len;
+    c11 += w * (i * i) * (i * i) / (PetscReal)(n2 * n2);
+    c12 += w * (i * i) * (j * j) / (PetscReal)(n2 * n2);
+  }
   Elat = sc->dim == 3 ? (c11 - c12) * (c11 + 2 * c12) / (c11 + c12) : (c11 * c11 - c12 * c12) / c11;
   return Elat / (sc->model == PD_MODEL_PLANE_STRAIN ? 16.0 / 15.0 : 1.0);
 }

@@ -18,10 +18,8 @@ static PetscErrorCode BarReal(PetscOptionItems *PetscOptionsObject, PDScene *sc,
    chain keeps the bar's direction only if the bar runs along that offset: its far end may lie at most
    half a spacing off the line the chain follows, the rounding every bar position gets. */
 static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
-  const PetscReal m = sc->horizon_ratio;
-  const PetscInt  R = (PetscInt)PetscFloorReal(m) + 1, Rz = sc->dim == 3 ? R : 0;
-  PetscReal       d[3], len = 0, best = -2, off, along = 0;
-  PetscInt        bn2 = 0;
+  PetscReal d[3], len = 0, best = -2, off, along;
+  PetscInt  bn2 = 0, st[4] = {0, 0, 0, -1};
 
   PetscFunctionBeginUser;
   for (PetscInt a = 0; a < 3; a++) {
@@ -32,21 +30,14 @@ static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
   PetscCheck(len >= 1 - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option %s: a bar spans at least one grid spacing (%g m) to hold a segment, this one %g m", opt, (double)sc->dx,
              (double)(len * sc->dx));
-  for (PetscInt i = -R; i <= R; i++)
-    for (PetscInt j = -R; j <= R; j++)
-      for (PetscInt k = -Rz; k <= Rz; k++) {
-        const PetscInt n2 = i * i + j * j + k * k;
-        PetscReal      c;
-        if (n2 == 0 || PDFamilyRule(m, n2) == PD_FAMILY_OUT) continue;
-        c = (i * d[0] + j * d[1] + k * d[2]) / (len * PetscSqrtReal((PetscReal)n2));
-        if (c > best + 1e-12 || (c > best - 1e-12 && n2 < bn2)) {
-          best       = c;
-          bn2        = n2;
-          b->step[0] = i;
-          b->step[1] = j;
-          b->step[2] = k;
-        }
-      }
+  while (PDFamilyNext(sc->horizon_ratio, sc->dim, st)) {
+    const PetscReal c = (st[0] * d[0] + st[1] * d[1] + st[2] * d[2]) / (len * PetscSqrtReal((PetscReal)st[3]));
+    if (c > best + 1e-12 || (c > best - 1e-12 && st[3] < bn2)) {
+      best = c;
+      bn2  = st[3];
+      for (PetscInt a = 0; a < 3; a++) b->step[a] = st[a];
+    }
+  }
   along = len * best;
   off   = PetscSqrtReal(PetscMax(0, len * len - along * along));
   PetscCheck(off <= 0.5 + 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
