@@ -33,7 +33,7 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import EXE, OUT, RESULTS_DIR, ROOT, experiment, load_results, run_timed, store_result  # noqa: E402
+from common import EXE, GREGOIRE_DATA, OUT, RESULTS_DIR, ROOT, experiment_peaks, load_results, run_timed, store_result  # noqa: E402
 
 DATA = os.path.join(RESULTS_DIR, "calibration.json")
 RATIOS = {"3": 3.0, "pi": math.pi, "4": 4.0}
@@ -42,7 +42,6 @@ FE_MESHES = ("50x5x5", "100x10x10", "200x20x20")
 FE_LOADED = "100x10x10"  # the mesh of the per-spacing references: within 0.04 % of the finest at L = 1 m
 SPACINGS = (0.02, 0.01, 0.005, 0.0025)
 BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
-EXPERIMENT = {"un": "gregoire2013_d50_un_load_cmod.csv", "hn": "gregoire2013_d50_hn_load_cmod.csv"}
 
 
 def timoshenko(P=1e4, L=1.0, E=30e9, b=0.1, h=0.1, nu=0.25, k=5.0 / 6.0):
@@ -102,14 +101,6 @@ def measure_softening(beam, dx, calibration):
             "cpu_s": cpu, "stiffness_ratio": s.get("lattice_stiffness_ratio")}
 
 
-def envelope(beam):
-    """Largest loads (N) of the experimental mean, lower and upper curves, or None without data."""
-    if beam not in EXPERIMENT:
-        return None
-    rows = experiment(EXPERIMENT[beam])
-    return tuple(1e3 * max(r[c] for r in rows) for c in (1, 2, 3))
-
-
 def softening_rows(res):
     """Peaks by beam, calibration and spacing: the runs in res, and the continuum calibration's dx = 2.5 mm
     peaks from gregoire_dx2.5.json."""
@@ -137,7 +128,7 @@ def softening_report(res, lines):
               "| beam | calibration | peak at 5 mm | peak at 2.5 mm | change | experiment (min - max) | Newton at 2.5 mm | wall at 2.5 mm (s) |",
               "|---|---|---|---|---|---|---|---|"]
     for beam in BEAMS:
-        env = envelope(beam)
+        env = experiment_peaks(beam) if beam in GREGOIRE_DATA else None
         for cal in ("continuum", "stencil"):
             a, b = peaks.get((beam, cal, 0.005)), peaks.get((beam, cal, 0.0025))
             if not a and not b:

@@ -64,3 +64,25 @@ def experiment(name):
     """A digitised experimental curve in data/: rows of [CMOD (mm), mean, min, max load (kN)]."""
     rows = [l for l in open(os.path.join(ROOT, "data", name)) if not l.startswith("#")][1:]
     return [[float(x) for x in l.split(",")] for l in rows]
+
+
+# the Gregoire D = 50 mm series' curves in data/, by beam
+GREGOIRE_DATA = {"un": "gregoire2013_d50_un_load_cmod.csv", "hn": "gregoire2013_d50_hn_load_cmod.csv"}
+
+
+def experiment_peaks(beam):
+    """Largest loads (N) of a Gregoire beam's experimental mean, lower and upper curves, or Nones without data."""
+    if beam not in GREGOIRE_DATA:
+        return (None, None, None)
+    rows = experiment(GREGOIRE_DATA[beam])
+    return tuple(1e3 * max(r[c] for r in rows) for c in (1, 2, 3))
+
+
+def curve_difference(a, b):
+    """RMS load difference of run b against run a (dicts with a 'curve' of [CMOD, load] rows) over the CMOD
+    range both reach, over a's peak."""
+    import numpy as np
+    ca, la = np.array(a["curve"]).T
+    cb, lb = np.array(b["curve"]).T
+    c = np.linspace(0, min(ca.max(), cb.max()), 400)
+    return float(np.sqrt(np.mean((np.interp(c, ca, la) - np.interp(c, cb, lb)) ** 2)) / la.max())

@@ -16,7 +16,7 @@ import json
 import os
 import tempfile
 
-from common import EXE, RESULTS_DIR, OUT, ROOT, experiment, load_results, run_timed, store_result
+from common import EXE, GREGOIRE_DATA, RESULTS_DIR, OUT, ROOT, experiment, experiment_peaks, load_results, run_timed, store_result
 
 RESULTS = os.path.join(RESULTS_DIR, "gregoire.json")
 
@@ -24,19 +24,8 @@ BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
 LAWS = ["linear", "bilinear", "trilinear", "nonlinear"]
 SPACINGS = [5e-3, 2.5e-3]
 # experimental mean peak and min-max (N), Gregoire et al. (2013) as digitised in data/ (FN: thesis Fig. 5.9)
-DATA = {"un": "gregoire2013_d50_un_load_cmod.csv", "hn": "gregoire2013_d50_hn_load_cmod.csv"}
-
-
-def envelope(beam):
-    """Experimental peak (N): the mean curve's largest load and the largest loads of the lower and upper
-    envelope curves in data/, or Nones where there is no data."""
-    if beam not in DATA:
-        return (None, None, None)
-    rows = experiment(DATA[beam])
-    return tuple(1e3 * max(r[c] for r in rows) for c in (1, 2, 3))
-
-
-EXPERIMENT = {beam: envelope(beam) for beam in BEAMS}
+DATA = GREGOIRE_DATA
+EXPERIMENT = {beam: experiment_peaks(beam) for beam in BEAMS}
 # Hobbs thesis, non-linear law, dx = 5 mm, explicit: with / without the critical-stretch correction (Sec. 5.5.5)
 THESIS = {"un": (4748, 5336), "fn": (3097, 3320), "hn": (1280, 1362)}
 

@@ -13,7 +13,7 @@ import os
 import re
 import tempfile
 
-from common import EXE, RESULTS_DIR, OUT, ROOT, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, curve_difference, load_results, run_timed, store_result
 
 RESULTS = os.path.join(RESULTS_DIR, "solve_profile.json")
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
@@ -58,15 +58,6 @@ def run(label, extra, dx, timeout):
             "exit": code, "wall_s": wall, "cpu_s": cpu, "status": s["status"], "steps": s["steps"], "newton_its": s["newton_its"],
             "ksp_its": s["ksp_its"], "peak_N": s["peak_load_N"], "events_s": ev, "stages_s": stages,
             "curve": [[float(r["cmod_m"]), float(r["load_N"])] for r in rows]}
-
-
-def curve_difference(a, b):
-    """RMS load difference of b against a over a's CMOD range shared by both, over a's peak."""
-    import numpy as np
-    ca, la = np.array(a["curve"]).T
-    cb, lb = np.array(b["curve"]).T
-    c = np.linspace(0, min(ca.max(), cb.max()), 400)
-    return float(np.sqrt(np.mean((np.interp(c, ca, la) - np.interp(c, cb, lb)) ** 2)) / la.max())
 
 
 def report(res):
