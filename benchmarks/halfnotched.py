@@ -185,6 +185,11 @@ def report():
     lines += ["", "Hinge length (bilinear law, splitting strength): the peaks for s / h = "
               + ", ".join("%s: unnotched %s N, half-notched %s N" % (z, fmt(v["un"]), fmt(v["hn"]))
                           for z, v in sorted(h["zeta_bilinear_splitting"].items(), key=lambda kv: float(kv[0]))) + ".", ""]
+    # the hinge as long as half the beam's depth in both beams (Ulfkjaer's choice): half the unnotched
+    # ligament, the whole half-notched one
+    zu, zh = h["zeta_bilinear_splitting"]["0.5"]["un"], h["zeta_bilinear_splitting"]["1.0"]["hn"]
+    lines += ["With the hinge half the beam's depth long in both beams (25 mm): unnotched %s N (%s), half-notched %s N (%s), "
+              "ratio %.3f." % (fmt(zu), pct(zu, exp["un"][0]), fmt(zh), pct(zh, exp["hn"][0]), zh / zu), ""]
     fit = h["gf_matching_hn"]
     lines += ["The fracture energy with which the hinge (bilinear, f_t = %.2f MPa) meets the half-notched mean: G_F = %.1f N/m "
               "(%.0f %% of the data's); with it the unnotched beam peaks at %s N (%s on its experiment)." % (

@@ -41,13 +41,13 @@ typedef struct {
   PDAugmented    aug; /* used for linear constraints unless -pd_arclength_solve bordering */
   PetscBool      augmented;
   PetscReal      lam;
-  PetscReal      vnorm;      /* |v|, with v */
-  PetscReal      psi2;       /* spherical scaling of lambda */
-  PetscBool      have_prev;  /* dprev holds the last accepted step */
-  PetscInt       its, lits;  /* this step */
-  PetscInt       assemblies; /* for the preconditioner lag */
-  PetscBool      direct;     /* KSPPREONLY: no lag */
-  unsigned char *branch;     /* per-bond branches, frozen once Newton cycles at history kinks */
+  PetscReal      vnorm;     /* |v|, with v */
+  PetscReal      psi2;      /* spherical scaling of lambda */
+  PetscBool      have_prev; /* dprev holds the last accepted step */
+  PetscInt       its, lits; /* this step */
+  PDPCRefresh    refresh;   /* when to rebuild the preconditioner */
+  PetscBool      direct;    /* KSPPREONLY: factor at every assembly */
+  unsigned char *branch;    /* per-bond branches, frozen once Newton cycles at history kinks */
   /* IMPL-EX (-pd_arclength_implex): bond histories at the last two accepted steps, the one a step uses */
   PetscReal  *kx_n, *kx_prev;
   PetscReal   implex;   /* the damage error per step IMPL-EX adapts to (-pd_arclength_implex, or the fallback's) */
@@ -65,6 +65,22 @@ typedef struct {
 } Arc;
 
 typedef enum { ARC_LOAD = -1 } ArcPlain; /* plain control: lambda advances by a fixed increment */
+
+/* A solve with the tangent; one that fails with a preconditioner kept from an earlier tangent is made
+   again with a fresh one. */
+static PetscErrorCode Solve(Arc *a, Vec b, Vec x) {
+  PetscBool again;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPSolve(a->ksp, b, x));
+  if (a->direct) PetscFunctionReturn(0);
+  PetscCall(PDPCRefreshSolved(&a->refresh, a->ksp, &again));
+  if (!again) PetscFunctionReturn(0);
+  PetscCall(PDPCRefreshAssembled(&a->refresh, a->ksp));
+  PetscCall(KSPSolve(a->ksp, b, x));
+  PetscCall(PDPCRefreshSolved(&a->refresh, a->ksp, NULL));
+  PetscFunctionReturn(0);
+}
 
 /* Residual on free dofs (constrained ones are lifted to lambda u_ref, so theirs is zero) and |f_int|. */
 static PetscErrorCode Residual(Arc *a, PetscReal *rnorm, PetscReal *fnorm) {
@@ -89,9 +105,12 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
 
   PetscFunctionBeginUser;
   PetscCall(PDModelJacobian(NULL, a->u, a->J, a->P, m));
-  /* an iterative solve absorbs a lagged factor (rebuilt every third assembly, as under plain control); a
-     direct one (preonly) must factor every time */
-  PetscCall(KSPSetReusePreconditioner(a->ksp, a->direct || a->assemblies++ % 3 == 0 ? PETSC_FALSE : PETSC_TRUE));
+  /* an iterative solve absorbs a preconditioner kept from an earlier tangent until it goes stale (as under
+     plain control); a direct one (preonly) must factor every time */
+  if (a->direct)
+    PetscCall(KSPSetReusePreconditioner(a->ksp, PETSC_FALSE));
+  else
+    PetscCall(PDPCRefreshAssembled(&a->refresh, a->ksp));
   PetscCall(KSPSetOperators(a->ksp, a->J, a->P));
   PetscCall(PDModelTangentApply(m, a->u, m->u_ref, a->q));
   PetscCall(VecAXPY(a->q, -1, m->f_ref));
@@ -99,7 +118,7 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
   PetscCall(VecAXPY(a->q, -1, a->w));
   PetscCall(VecScale(a->q, -1));
   if (!direction) PetscFunctionReturn(0);
-  PetscCall(KSPSolve(a->ksp, a->q, a->v));
+  PetscCall(Solve(a, a->q, a->v));
   PetscCall(KSPGetIterationNumber(a->ksp, &n));
   a->lits += n;
   PetscCall(VecAXPY(a->v, 1, m->u_ref));
@@ -189,6 +208,7 @@ static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscRea
   PDModel        *m = a->m;
   PetscScalar     cu, cl, cv;
   PetscReal       rhs, t;
+  PetscBool       again;
   const PetscReal vnorm = a->vnorm;
 
   PetscFunctionBeginUser;
@@ -218,6 +238,13 @@ static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscRea
   /* K du - q dlambda = -G with q from TangentAndDirection; the column is -q / |v| */
   PetscCall(VecAXPBY(a->w, -1 / vnorm, 0, a->q));
   PetscCall(PDAugmentedSolve(&a->aug, a->w, a->row, PetscRealPart(cl) / vnorm, PetscRealPart(cv) / vnorm, a->R, rhs, a->duI, &t, its, kr));
+  PetscCall(PDPCRefreshSolved(&a->refresh, a->aug.ksp, &again));
+  if (again) { /* failed with a kept preconditioner: once more with a fresh one */
+    PetscCall(PDPCRefreshAssembled(&a->refresh, a->ksp));
+    PetscCall(
+        PDAugmentedSolve(&a->aug, a->w, a->row, PetscRealPart(cl) / vnorm, PetscRealPart(cv) / vnorm, a->R, rhs, a->duI, &t, its, kr));
+    PetscCall(PDPCRefreshSolved(&a->refresh, a->aug.ksp, NULL));
+  }
   *dlam = t / vnorm;
   PetscFunctionReturn(0);
 }
@@ -366,7 +393,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     if (aug)
       PetscCall(AugmentedUpdate(a, p, type, dl, &dlam, &n, &kr, &fine));
     else {
-      PetscCall(KSPSolve(a->ksp, a->R, a->duI));
+      PetscCall(Solve(a, a->R, a->duI));
       PetscCall(KSPGetIterationNumber(a->ksp, &n));
       PetscCall(KSPGetConvergedReason(a->ksp, &kr));
     }
@@ -511,8 +538,8 @@ static PetscErrorCode ReadCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
   PetscFunctionBeginUser;
   PetscCall(PDCheckpointRead(m, rec, m->scene->restart, 3, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
   UnpackState(a, p);
-  m->lambda     = p->lambda_n;
-  a->assemblies = 0;
+  m->lambda = p->lambda_n;
+  PetscCall(PDPCRefreshRequest(&a->refresh)); /* a fresh preconditioner, as the run that wrote it had at its start */
   PetscCall(PetscInfo(NULL, "path following goes on from %s at step %" PetscInt_FMT ", load factor %g\n", m->scene->restart, p->step,
                       (double)p->lambda_n));
   PetscFunctionReturn(0);
@@ -611,6 +638,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   PetscCall(KSPSetFromOptions(a.ksp));
   PetscCall(KSPGetPC(a.ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)a.ksp, KSPPREONLY, &a.direct));
+  PetscCall(PDPCRefreshAttach(m, a.ksp, NULL, &a.refresh));
   /* a direct solver makes the second solve a pair of triangular solves: bordering costs nothing more */
   a.augmented =
       sc->arc_augmented && !a.direct && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;

@@ -22,3 +22,26 @@ PetscErrorCode PDPathStopCriteria(const PDScene *, PDRecord *, const PDCurveRow 
 /* Path following from the accepted state of plain control (PDStaticRun), whose last increment was
    dlam_last: its fallback where it finds no equilibrium. */
 PetscErrorCode PDArcLengthTakeOver(PDModel *, PDRecord *, const PDPath *, PetscReal dlam_last);
+
+/* When to rebuild the preconditioner (src/solve/pc_refresh.c): every third assembly, or, for 3D models
+   under GAMG, when the Krylov solver finds it stale. Under SNES (snes given) the decision reaches SNES as
+   its lag; otherwise PDPCRefreshAssembled tells the KSP, after every assembly of its operator, whether
+   to reuse the preconditioner. */
+typedef struct {
+  SNES      snes;       /* the SNES whose lag carries the decision, or NULL */
+  PetscBool when_stale; /* the policy: when stale, or every third assembly */
+  PetscReal fresh;      /* Krylov iterations per decade of the first solve after the last rebuild */
+  PetscBool due;        /* rebuild at the next assembly */
+  PetscBool measure;    /* the next solve is the first after a rebuild */
+  PetscInt  assemblies; /* since the last rebuild, for the fixed lag */
+  PetscInt  rebuilds;   /* so far */
+} PDPCRefresh;
+
+/* The policy follows ksp's preconditioner, set from the options already. */
+PetscErrorCode PDPCRefreshAttach(const PDModel *, KSP, SNES, PDPCRefresh *);
+PetscErrorCode PDPCRefreshAssembled(PDPCRefresh *, KSP);
+PetscErrorCode PDPCRefreshRequest(PDPCRefresh *);
+/* After a solve (called by the SNES monitor PDPCRefreshAttach installs, or by the driver without SNES).
+   *again (if given): the solve failed with a kept preconditioner; after PDPCRefreshAssembled it may be
+   made again with a fresh one. */
+PetscErrorCode PDPCRefreshSolved(PDPCRefresh *, KSP, PetscBool *again);

@@ -33,7 +33,7 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
+static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refresh) {
   KSP ksp;
 
   PetscFunctionBeginUser;
@@ -49,13 +49,6 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
        residual) took fewer Krylov iterations than the default second one on the half-notched beam, with
        the same curve (docs/benchmarks/solve_profile.md) */
     PetscCall(SNESKSPSetParametersEW(snes, 1, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
-  }
-  /* rebuild the ICC factor every third Newton iteration, across limiter stages too: the factor was
-     37 % of the half-notched beam's time; lagging by 2 halved the run (147 s to 75 s at dx = 5 mm), by 3
-     (with the restart above) took it to 43 s; 5 gains nothing more */
-  if (!m->linear) {
-    PetscCall(SNESSetLagPreconditioner(snes, 3));
-    PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
   }
   if (m->softening) {
     /* full Newton steps: the increment cut is the globalisation. Backtracking on |R| stalled where
@@ -74,6 +67,34 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes) {
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
   PetscCall(SNESSetFromOptions(snes));
+  /* the preconditioner is rebuilt every third assembly or, for 3D models under GAMG, when the Krylov solver
+     finds it stale (src/solve/pc_refresh.c), across Newton iterations, limiter stages and increments,
+     unless -snes_lag_preconditioner sets the lag */
+  if (!m->linear) {
+    PetscBool lag;
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-snes_lag_preconditioner", &lag));
+    if (lag)
+      PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
+    else
+      PetscCall(PDPCRefreshAttach(m, ksp, snes, refresh));
+  }
+  PetscFunctionReturn(0);
+}
+
+typedef struct {
+  PDModel     *m;
+  PDPCRefresh *refresh;
+} JacobianCtx;
+
+/* The tangent, and the preconditioner's refresh told of the assembly. */
+static PetscErrorCode Jacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
+  JacobianCtx *c = (JacobianCtx *)ctx;
+  KSP          ksp;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelJacobian(snes, u, J, P, c->m));
+  PetscCall(SNESGetKSP(snes, &ksp));
+  if (c->refresh->when_stale) PetscCall(PDPCRefreshAssembled(c->refresh, ksp));
   PetscFunctionReturn(0);
 }
 
@@ -125,7 +146,7 @@ static PetscErrorCode SwitchFromCG(SNES snes, PetscBool *retry) {
    increment, where GAMG converges; docs/solvers.md). The run goes on with algebraic multigrid on AIJ
    storage (once; the summary's solver names it), unless the preconditioner or the storage was chosen on
    the command line. */
-static PetscErrorCode SwitchToGAMG(PDModel *m, SNES snes, Mat *J, Mat *P, PetscBool *retry) {
+static PetscErrorCode SwitchToGAMG(PDModel *m, SNES snes, JacobianCtx *jctx, Mat *J, Mat *P, PetscBool *retry) {
   KSP                ksp;
   PC                 pc;
   KSPConvergedReason kr;
@@ -149,7 +170,7 @@ static PetscErrorCode SwitchToGAMG(PDModel *m, SNES snes, Mat *J, Mat *P, PetscB
   PetscCall(MatDestroy(J));
   PetscCall(PDModelCreateMatrix(m, J));
   if (!m->kp) *P = *J;
-  PetscCall(SNESSetJacobian(snes, *J, *P, PDModelJacobian, m));
+  PetscCall(SNESSetJacobian(snes, *J, *P, Jacobian, jctx));
   PetscCall(PCSetType(pc, PCGAMG));
   PetscCall(KSPSetFromOptions(ksp));
   *retry = PETSC_TRUE;
@@ -168,7 +189,7 @@ typedef struct {
 } StepResult;
 
 /* One load increment: Newton stages until equilibrium holds with no deferred bond event. */
-static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *res) {
+static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh, Vec u, StepResult *res) {
   const PDScene *sc      = m->scene;
   PetscBool      limited = PETSC_FALSE;
   PetscInt       maxit;
@@ -191,6 +212,12 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, Vec u, StepResult *r
     if (PDInterruptSeen()) {
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "interrupted"));
       break;
+    }
+    if (reason == SNES_DIVERGED_LINEAR_SOLVE && refresh->when_stale && !refresh->measure) {
+      /* a preconditioner kept from an earlier tangent may have lost its grip: Newton goes on from where
+         it stopped with a fresh one (once; a fresh one that fails is a failure) */
+      PetscCall(PDPCRefreshRequest(refresh));
+      continue;
     }
     if (reason == SNES_DIVERGED_FNORM_NAN || reason == SNES_DIVERGED_LINEAR_SOLVE) {
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
@@ -231,6 +258,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0, peak = 0;
   PetscInt       step     = 0;
   PetscBool      takeover = PETSC_FALSE;
+  PDPCRefresh    refresh  = {0};
+  JacobianCtx    jctx     = {m, &refresh};
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
@@ -241,8 +270,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(PDPathCreate(m, &path));
   PetscCall(SNESCreate(comm, &snes));
   PetscCall(SNESSetFunction(snes, r, PDModelResidual, m));
-  PetscCall(SNESSetJacobian(snes, J, P, PDModelJacobian, m));
-  PetscCall(ConfigureSolver(m, snes));
+  PetscCall(SNESSetJacobian(snes, J, P, Jacobian, &jctx));
+  PetscCall(ConfigureSolver(m, snes, &refresh));
   PetscCall(SNESGetTolerances(snes, &atol0, NULL, NULL, NULL, NULL));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
@@ -259,7 +288,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
     if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, path.du, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
-    PetscCall(SolveIncrement(m, snes, u, &res));
+    PetscCall(SolveIncrement(m, snes, &refresh, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);
     rec->newton_its += res.its;
@@ -271,7 +300,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
       if (stop) break;
       PetscCall(SwitchFromCG(snes, &retry));
       if (retry) continue; /* the same increment again, now with GMRES */
-      PetscCall(SwitchToGAMG(m, snes, &J, &P, &retry));
+      PetscCall(SwitchToGAMG(m, snes, &jctx, &J, &P, &retry));
       if (retry) continue; /* and with GAMG */
       if (!m->linear && dl * 0.5 < sc->dlambda_min && m->softening && sc->control_fallback && path.step > 0) {
         /* past a limit point, or where bonds snap, plain control has no equilibrium to find: path

@@ -1,0 +1,100 @@
+/* When to rebuild the preconditioner of the tangent.
+
+   Two policies:
+   - every third assembly (PD_FIXED_LAG), across Newton iterations, limiter stages and steps: block
+     ICC(0) and 2D models. The factor was 37 % of the half-notched beam's time when rebuilt every time;
+     a lag of 2 halved the run, 3 took it further, 5 gained nothing more. Rebuilding it only when stale
+     gained nothing at 3,500 nodes (fewer factors, more Krylov iterations), and on the 2D beams it let
+     left-preconditioned GMRES meet its tolerance on a preconditioned residual that no longer measured
+     the true one, so that Newton stalled (docs/solvers.md).
+   - when stale: 3D models under GAMG (the default from PD_GAMG_MIN_NODES nodes, or -pc_type gamg), whose set-up (aggregation, Galerkin
+   products, eigenvalue estimates) costs several V-cycles. A hierarchy built before the damage still fits the tangent, which damage changes
+   in a band of bonds. Each solve is measured in Krylov iterations per decade of residual reduction (its over log10(1/rtol):
+   Eisenstat-Walker moves rtol from solve to solve). The first solve after a rebuild sets the reference; a later one that needs more than
+     PD_STALE_FACTOR times it plus PD_STALE_SLACK, or that fails, asks for a rebuild at the next
+     assembly, and a failed one may be made again at once with a fresh preconditioner.
+   docs/solvers.md and docs/benchmarks/pc_refresh.md have the measurements. */
+#include "path.h"
+
+#define PD_FIXED_LAG 3
+#define PD_STALE_FACTOR 2.0
+#define PD_STALE_SLACK 4.0
+
+PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
+  PetscInt           its;
+  PetscReal          rtol, per_decade;
+  KSPConvergedReason reason;
+
+  PetscFunctionBeginUser;
+  if (again) *again = PETSC_FALSE;
+  if (!r->when_stale) PetscFunctionReturn(0);
+  PetscCall(KSPGetIterationNumber(ksp, &its));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
+  per_decade = its / PetscMax(1.0, -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON)));
+  if (r->measure) { /* the first solve with a fresh preconditioner */
+    r->fresh   = per_decade;
+    r->measure = PETSC_FALSE;
+  } else if (!r->due && (reason < 0 || per_decade > PD_STALE_FACTOR * r->fresh + PD_STALE_SLACK)) {
+    PetscCall(
+        PetscInfo(ksp, "preconditioner stale: %g iterations per decade against %g when built\n", (double)per_decade, (double)r->fresh));
+    PetscCall(PDPCRefreshRequest(r));
+    if (again && reason < 0) *again = PETSC_TRUE; /* failed with a kept preconditioner: worth a fresh one */
+  }
+  PetscFunctionReturn(0);
+}
+
+/* SNES keeps KSP's pre- and post-solve hooks for Eisenstat-Walker, so under SNES the solve is measured
+   from a monitor, which runs after each Newton update (iteration 0 is the start, after no solve) */
+static PetscErrorCode MonitorSolve(SNES snes, PetscInt it, PetscReal fnorm, void *ctx) {
+  KSP ksp;
+
+  PetscFunctionBeginUser;
+  (void)fnorm;
+  if (it == 0) PetscFunctionReturn(0);
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(PDPCRefreshSolved((PDPCRefresh *)ctx, ksp, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDPCRefreshAttach(const PDModel *m, KSP ksp, SNES snes, PDPCRefresh *r) {
+  PC        pc;
+  PetscBool gamg;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemzero(r, sizeof *r));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &gamg));
+  r->snes       = snes;
+  r->when_stale = m->bs == 3 && gamg ? PETSC_TRUE : PETSC_FALSE;
+  r->due        = PETSC_TRUE;
+  if (!snes) PetscFunctionReturn(0);
+  if (r->when_stale) {
+    PetscCall(SNESSetLagPreconditioner(snes, -2));
+    PetscCall(SNESMonitorSet(snes, MonitorSolve, r, NULL));
+  } else
+    PetscCall(SNESSetLagPreconditioner(snes, PD_FIXED_LAG));
+  PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDPCRefreshAssembled(PDPCRefresh *r, KSP ksp) {
+  PetscFunctionBeginUser;
+  if (!r->when_stale && r->assemblies++ % PD_FIXED_LAG == 0) r->due = PETSC_TRUE;
+  if (r->due) {
+    r->rebuilds++;
+    r->measure = PETSC_TRUE;
+  }
+  /* under SNES its lag has already told the KSP; the path-following driver tells it here */
+  if (!r->snes) PetscCall(KSPSetReusePreconditioner(ksp, r->due ? PETSC_FALSE : PETSC_TRUE));
+  r->due = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDPCRefreshRequest(PDPCRefresh *r) {
+  PetscFunctionBeginUser;
+  r->due        = PETSC_TRUE;
+  r->assemblies = 0; /* the fixed lag counts from the rebuild */
+  if (r->snes && r->when_stale) PetscCall(SNESSetLagPreconditioner(r->snes, -2));
+  PetscFunctionReturn(0);
+}
