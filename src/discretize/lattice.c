@@ -18,8 +18,6 @@ PetscReal PDFamilyPartialVolume(PetscReal m, PetscInt n2, PetscBool partial_volu
   return r <= m - 0.5 ? 1 : m + 0.5 - r;
 }
 
-/* Offsets (di, dj, dk) of the bond family, dk = 0 in 2D, in lexicographic order, and the reach along
-   one axis. Built once; the neighbour search walks it from every node. */
 PetscBool PDFamilyNext(PetscReal m, PetscInt dim, PetscInt st[4]) {
   const PetscInt R = (PetscInt)PetscFloorReal(m) + 1, Rz = dim == 3 ? R : 0;
 
@@ -41,6 +39,8 @@ PetscBool PDFamilyNext(PetscReal m, PetscInt dim, PetscInt st[4]) {
   }
 }
 
+/* Offsets (di, dj, dk) of the bond family, dk = 0 in 2D, in lexicographic order, and the reach along
+   one axis. Built once; the neighbour search walks it from every node. */
 static PetscErrorCode BuildStencil(PDLattice *lat, PetscReal m) {
   const PetscInt R = (PetscInt)PetscFloorReal(m) + 1, Rz = lat->dim == 3 ? R : 0;
   PetscInt       st[4] = {0, 0, 0, -1};

@@ -34,7 +34,6 @@ typedef struct {
   PetscBool due;        /* rebuild at the next assembly */
   PetscBool measure;    /* the next solve is the first after a rebuild */
   PetscInt  assemblies; /* since the last rebuild, for the fixed lag */
-  PetscInt  rebuilds;   /* so far */
 } PDPCRefresh;
 
 /* The policy follows ksp's preconditioner, set from the options already. */

@@ -81,10 +81,7 @@ PetscErrorCode PDPCRefreshAttach(const PDModel *m, KSP ksp, SNES snes, PDPCRefre
 PetscErrorCode PDPCRefreshAssembled(PDPCRefresh *r, KSP ksp) {
   PetscFunctionBeginUser;
   if (!r->when_stale && r->assemblies++ % PD_FIXED_LAG == 0) r->due = PETSC_TRUE;
-  if (r->due) {
-    r->rebuilds++;
-    r->measure = PETSC_TRUE;
-  }
+  if (r->due) r->measure = PETSC_TRUE;
   /* under SNES its lag has already told the KSP; the path-following driver tells it here */
   if (!r->snes) PetscCall(KSPSetReusePreconditioner(ksp, r->due ? PETSC_FALSE : PETSC_TRUE));
   r->due = PETSC_FALSE;
