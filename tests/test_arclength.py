@@ -93,20 +93,25 @@ def at_fraction(r, f, val="dissipated_J"):
 
 def snapback():
     # 2D unnotched D = 400 mm beam (5 % bond strength scatter). CMOD control passes the limit point, traces
-    # the snap-back (load-point displacement going back) and goes on to below 10 % of the peak.
-    r = run(UN2D, "-pd_control", "arclength", "-pd_stop_fraction", "0.08")
+    # the snap-back (load-point displacement going back) and the turn after it, where the load point moves
+    # forward again, and stops at 60 % of the peak (measured: the turn at 69 %; the tail to 8 % took three
+    # quarters of the run, and the separation case traces a tail to 2 %)
+    r = run(UN2D, "-pd_control", "arclength", "-pd_stop_fraction", "0.6")
     s, c = r.summary, r.curve
     check(s["converged"] and s["status"].startswith("separated"), "arc length: %s" % s["status"])
-    check(c[-1]["load_N"] < 0.1 * s["peak_load_N"], "final load %.0f N below 10 %% of the peak %.0f N" % (c[-1]["load_N"], s["peak_load_N"]))
+    check(c[-1]["load_N"] < 0.62 * s["peak_load_N"], "final load %.0f N below 62 %% of the peak %.0f N" % (c[-1]["load_N"], s["peak_load_N"]))
     k = max(range(len(c)), key=lambda i: c[i]["load_N"])
-    back = c[k]["disp_m"] - min(x["disp_m"] for x in c[k:])
+    lo = min(range(k, len(c)), key=lambda i: c[i]["disp_m"])
+    back = c[k]["disp_m"] - c[lo]["disp_m"]
     check(back > 0.05 * c[k]["disp_m"], "snap-back: after the peak the load point moves back by %.1f %% of its peak displacement (> 5 %%)"
           % (100 * back / c[k]["disp_m"]))
+    fwd = c[-1]["disp_m"] - c[lo]["disp_m"]
+    check(lo < len(c) - 1 and fwd > 0.002 * c[k]["disp_m"], "and turns: the load point then moves forward again by %.2f %% of it (> 0.2 %%)"
+          % (100 * fwd / c[k]["disp_m"]))
     common("snap-back", r)
     # plain displacement control cannot follow the snap-back: measured, it jumps from the limit point to the
-    # branch below in one step (the limiter settles the jump in stages), then goes on along that branch
-    # (measured: to separation, with a lower peak than path following's)
-    d = run(UN2D, "-pd_control", "displacement", expect_ok=False)
+    # branch below in one step (the limiter settles the jump in stages); the run stops once below 45 % of the peak
+    d = run(UN2D, "-pd_control", "displacement", "-pd_stop_fraction", "0.45")
     dc = d.curve
     kp = max(range(len(dc)), key=lambda i: dc[i]["load_N"])
     drop = dc[kp]["load_N"] - dc[kp + 1]["load_N"]
