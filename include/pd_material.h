@@ -32,6 +32,7 @@ typedef struct {
   PetscReal k, alpha;  /* non-linear law shape */
   PetscBool per_bond;  /* critical stretch from lambda_ij c (Eq. 5.32 generalised) */
   PetscInt  sublevels; /* limiter levels on the softening branch */
+  PetscReal confine;   /* rise of the thresholds per unit nodal compression (-pd_fc, docs/softening.md); 0: off */
 } PDLaw;
 
 PetscErrorCode PDLawSetUp(const PDScene *, const PDMaterial *, PDLaw *);

@@ -27,6 +27,8 @@ typedef struct {
   unsigned char *level;                     /* PDBondLevel the limiter allows the bond to reach */
   unsigned char *level_n;                   /* levels at the last accepted step, to restart a step */
   PDLawBond     *thr;                       /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscReal     *shift;                     /* [nbonds] rise of thr under compression (-pd_fc), or NULL */
+  Vec            dilatation;                /* ghosted nodal dilatation for that rise, or NULL */
   PetscReal     *stretch;                   /* per-bond scratch of the limiter and the history update */
   unsigned char *branch;                    /* path following: per-bond PDBranch frozen for a stage, or NULL */
   PetscInt       limiter_max;               /* bond events granted per Newton iteration; 0: no cap */
@@ -72,7 +74,7 @@ typedef enum {
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
-#define PD_MAX_EFFECTS 8
+#define PD_MAX_EFFECTS 10
 PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
 PetscBool      PDModelDefaultsToGAMG(const PDModel *);
@@ -85,6 +87,9 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
+/* Crushing (-pd_fc): raises the thresholds of bonds still elastic by their law's confine times the
+   compression of their two nodes at the stretches s (one per local bond); a rise is never taken back. */
+PetscErrorCode PDModelConfine(PDModel *, const PetscReal *s);
 PetscErrorCode PDModelStretchesAt(PDModel *, Vec u, PetscReal *s);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);

@@ -79,6 +79,7 @@ typedef struct {
   PetscReal  E, rho;
   PDLawKind  law;
   PetscReal  ft, Gf;   /* tensile strength (Pa), fracture energy (N/m) */
+  PetscReal  fc;       /* compressive strength (Pa) that raises tensile thresholds under compression; 0: off */
   PetscReal  kr;       /* bilinear sc/s0 (Zaccariotto form) */
   PetscBool  bobaru;   /* bilinear in the Bobaru form, s0 = ft/E */
   PetscReal  beta;     /* trilinear */

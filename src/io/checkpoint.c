@@ -35,7 +35,8 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
     const PDLaw *law = &m->law[bd->material[e]];
     if (!PDBondCountedHere(m->lat, bd, e)) continue;
     mine[0] += PDBondStiffness(bd, e);
-    if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc;
+    /* the thresholds as built: crushing's rise (m->shift) is history, written with it */
+    if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc - (m->shift ? m->shift[e] : 0);
     if (bd->seg && bd->seg[e] >= 0) {
       const PDSteel *st = &m->steel[bd->seg_bar[bd->seg[e]]];
       mine[1] += st->sy + st->h + (st->su < PETSC_MAX_REAL ? st->su : 0);
@@ -384,6 +385,42 @@ static PetscErrorCode WriteHistory(const PDModel *m, const PetscReal *kappa_prev
   PetscCall(VecDestroy(&K));
   PetscCall(VecDestroy(&L));
   PetscCall(VecDestroy(&Kp));
+  if (m->shift) { /* crushing's rise of the thresholds, over the same entries */
+    PetscCall(HistoryVecs(m, &K, &L));
+    PetscCall(PetscObjectSetName((PetscObject)K, "threshold_rise"));
+    PetscCall(VecGetArray(K, &k));
+    for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) k[p] = m->shift[bd->inc_bond[p]];
+    PetscCall(VecRestoreArray(K, &k));
+    PetscCall(VecView(K, v));
+    PetscCall(VecDestroy(&K));
+    PetscCall(VecDestroy(&L));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* Crushing's rise of the thresholds from the file, before the levels that depend on them. A bond with
+   both ends owned is read twice: the rise is set, not added. */
+static PetscErrorCode ReadRise(PDModel *m, PetscViewer v) {
+  const PDBonds     *bd = m->bonds;
+  Vec                R, unused;
+  const PetscScalar *r;
+
+  PetscFunctionBeginUser;
+  PetscCall(HistoryVecs(m, &R, &unused));
+  PetscCall(PetscObjectSetName((PetscObject)R, "threshold_rise"));
+  PetscCall(VecLoad(R, v));
+  PetscCall(VecGetArrayRead(R, &r));
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
+    const PetscInt  e = bd->inc_bond[p];
+    const PetscReal d = PetscRealPart(r[p]) - m->shift[e];
+    m->thr[e].s0 += d;
+    m->thr[e].s1 += d;
+    m->thr[e].sc += d;
+    m->shift[e] += d;
+  }
+  PetscCall(VecRestoreArrayRead(R, &r));
+  PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&unused));
   PetscFunctionReturn(0);
 }
 
@@ -397,6 +434,7 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
   PetscBool          has = PETSC_FALSE;
 
   PetscFunctionBeginUser;
+  if (m->shift) PetscCall(ReadRise(m, v));
   PetscCall(HistoryVecs(m, &K, &L));
   PetscCall(VecLoad(K, v));
   PetscCall(VecLoad(L, v));

@@ -279,7 +279,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     const PetscInt nb = PetscMax(1, bd->nbonds);
     PetscCall(PetscCalloc4(nb, &m->kappa, nb, &m->level, nb, &m->level_n, nb, &m->stretch));
     m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
-    if (bd->lambda || sc->strength_scatter > 0) {
+    PetscBool crush  = PETSC_FALSE;
+    for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
+    if (bd->lambda || sc->strength_scatter > 0 || crush) {
       PetscCall(PetscMalloc1(nb, &m->thr));
       for (PetscInt e = 0; e < bd->nbonds; e++) {
         PDLaw law = m->law[bd->material[e]];
@@ -287,6 +289,11 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
         PDLawBondThresholds(&law, bd->lambda ? bd->lambda[e] : 1, &m->thr[e]);
       }
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
+    }
+    if (crush) {
+      PetscCall(PetscCalloc1(nb, &m->shift));
+      PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
+      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
     }
   }
   if (sc->nbars) {
@@ -321,6 +328,8 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->thr));
+  PetscCall(PetscFree(m->shift));
+  PetscCall(VecDestroy(&m->dilatation));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));
   PetscFunctionReturn(0);
 }
@@ -620,6 +629,11 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
   names[n++] = "elasticity";
   if (soft) names[n++] = "softening_damage";
   if (brk) names[n++] = "bond_breaking";
+  for (PetscInt k = 0; k < sc->nmaterials; k++)
+    if (m->law[k].confine > 0) {
+      names[n++] = "crushing";
+      break;
+    }
   if (sc->nbars) names[n++] = "steel_plasticity";
   for (PetscInt k = 0; k < sc->nbars; k++)
     if (sc->bar[k].rupture > 0) {

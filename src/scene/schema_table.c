@@ -144,6 +144,16 @@ const PDOptionSpec PDOptionSchema[] = {
      .help =
          "Tensile strength; needed by the bilinear law in the bobaru form, the trilinear and the non-linear law. Material data: accepted "
          "with every law, so that an elastic run of a softening scene needs no other file"},
+    {.name   = "_fc",
+     .family = MAT,
+     .base   = PETSC_TRUE,
+     .type   = PD_OPTION_REAL,
+     .unit   = "Pa",
+     .def    = "0",
+     .range  = "[0, inf)",
+     .help   = "Compressive strength for crushing: a bond's tensile thresholds rise with the compression (dilatation) of its two nodes, "
+               "so that uniaxial compression fails at fc instead of at the lattice's own E s0 / nu (about 3 ft); 0 (default): the "
+               "thesis' bond, whose thresholds ignore compression. Softening laws only (docs/softening.md, Compression)"},
     {.name     = "_fcm",
      .family   = MAT,
      .base     = PETSC_TRUE,

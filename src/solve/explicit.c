@@ -272,6 +272,10 @@ static PetscErrorCode PostStep(TS ts) {
   }
   PetscCall(VecGetSubVector(X, c->is_u, &u));
   PetscCall(AddExternalWork(c, u));
+  if (m->shift && step % 10 == 0) { /* crushing: thresholds follow the compression, every tenth step like the check above */
+    PetscCall(PDModelStretchesAt(m, u, m->stretch));
+    PetscCall(PDModelConfine(m, m->stretch));
+  }
   PetscCall(VecRestoreSubVector(X, c->is_u, &u));
   if (m->scene->damping > 0 || m->scene->adr) { /* free dofs only: constrained ones follow the prescribed motion */
     PetscScalar       *vv;

@@ -165,6 +165,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
     m->level_n[e]       = m->level[e];
   }
   for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, s[bd->seg_bond[sg]]);
+  PetscCall(PDModelConfine(m, s));
   PetscCall(PDModelCountDamage(m));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
   PetscFunctionReturn(0);
