@@ -12,7 +12,7 @@
    - the driver's scalars as named attributes;
    - a fingerprint of the scene: node, bond and dof counts and two sums over the bonds (stiffness
      coefficients and critical stretches), and the path-following constraint. A changed geometry, modulus,
-     strength, fracture energy, horizon, correction or constraint changes one of them, and the restart is
+     strength (tensile or compressive), fracture energy, horizon, correction or constraint changes one of them, and the restart is
      refused before any output is written.
    The file is written under a temporary name and renamed once complete. */
 #include "pd_io.h"
@@ -35,8 +35,9 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
     const PDLaw *law = &m->law[bd->material[e]];
     if (!PDBondCountedHere(m->lat, bd, e)) continue;
     mine[0] += PDBondStiffness(bd, e);
-    /* the thresholds as built: crushing's rise (m->shift) is history, written with it */
-    if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc - (m->shift ? m->shift[e] : 0);
+    /* the thresholds as built (crushing's rise, m->shift, is history, written with it) and the rise's
+       coefficient, so that a leg with another -pd_fc is refused like one with another strength */
+    if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc - (m->shift ? m->shift[e] : 0) + law->confine;
     if (bd->seg && bd->seg[e] >= 0) {
       const PDSteel *st = &m->steel[bd->seg_bar[bd->seg[e]]];
       mine[1] += st->sy + st->h + (st->su < PETSC_MAX_REAL ? st->su : 0);
