@@ -111,7 +111,7 @@ def main():
     json.dump(c, open(os.path.join(out, "crosscheck.json"), "w"), indent=1)
     if a.record:
         res = load_results(JSON)
-        res.setdefault("cases", {})[a.record] = dict(c, command=" ".join(["benchmarks/crosscheck.py"] + sys.argv[1:]))
+        res.setdefault("cases", {})[a.record] = dict(c, command=shlex.join(["benchmarks/crosscheck.py"] + sys.argv[1:]))
         save_results(JSON, res)
     md = ["# Cross-check: %s %s" % (name, c["options"]), ""] + table(c)
     open(os.path.join(out, "crosscheck.md"), "w").write("\n".join(md) + "\n")

@@ -5,7 +5,6 @@
    bond's two nodes so that a uniform compression raises every bond of a node alike. The rise follows the
    committed state (an accepted step, or every tenth explicit step) and applies to the next increments. */
 #include "pd_model.h"
-#include "kernel.h"
 
 /* Dilatation of each owned node, theta = dim sum w s / sum w over its bonds with w = c |xi|^2: for a
    homogeneous strain eps, the mean of s = n.eps.n over a symmetric family is tr(eps) / dim. Ghosts by
