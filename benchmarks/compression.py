@@ -21,7 +21,6 @@ PRISM = os.path.join(ROOT, "options", "prism_compression_2d.opts")
 PRISM3D = os.path.join(ROOT, "options", "prism_compression_3d.opts")
 BEAM = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 AREA, FC, FT = 0.1 * 0.1, 42.3e6, 3.9e6  # section (m^2, both prisms), strengths (Pa)
-NU = {PRISM: 1.0 / 3, PRISM3D: 0.25}  # the lattice's Poisson ratio: in the plane, in 3D
 
 # name, what, scene, extra options
 CASES = [
@@ -93,6 +92,7 @@ def measure(names):
             code, wall, cpu, _ = run_timed([EXE, "-options_file", path, "-pd_output_dir", out, *extra], 3600, log)
         s = json.load(open(os.path.join(out, "summary.json")))
         r = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "status": s["status"].replace("|", "/"),
+             "lattice_poisson_ratio": s["lattice_poisson_ratio"],
              "peak_N": s["peak_load_N"], "steps": s["steps"], "newton_its": s["newton_its"], "effects": s["effects"], "s0": s["law"]["s0"],
              "steps_kind": "time steps" if "-pd_mode" in extra else "load steps"}
         if path != BEAM:
@@ -112,14 +112,15 @@ def report():
     res = load_results(JSON)
     runs = res["runs"]
     E = 37e9
-    own = {p: E * runs["prism_off"]["s0"] / nu for p, nu in NU.items()}
+    nu = {PRISM: runs["prism_off"]["lattice_poisson_ratio"], PRISM3D: runs["prism3d_off_explicit"]["lattice_poisson_ratio"]}
+    own = {p: E * runs["prism_off"]["s0"] / n for p, n in nu.items()}
     lines = ["# Concrete in compression: the lattice's own strength and -pd_fc", "",
              "Written by `benchmarks/compression.py` from `compression.json`. `options/prism_compression_2d.opts`: a plane-stress prism "
              "100 x 200 mm (dx = 5 mm), E = 37 GPa, f_t = 3.9 MPa, f_c = 42.3 MPa, non-linear law, bottom face on rollers, top face "
              "pushed down, and its 3D counterpart `options/prism_compression_3d.opts` (100 x 200 x 100 mm, dx = 10 mm). Without "
-             "`-pd_fc` the bonds across the load soften in tension once nu |eps| = s0, at E s0 / nu = %.1f MPa in the plane (nu = 1/3) "
-             "and %.1f MPa in 3D (nu = 1/4). Stress: peak load over the prism's section. Middle damage: mean nodal damage of the middle half "
-             "(50 < y < 150 mm) at the end." % (own[PRISM] / 1e6, own[PRISM3D] / 1e6), "",
+             "`-pd_fc` the bonds across the load soften in tension once nu |eps| = s0, at E s0 / nu = %.1f MPa in the plane and %.1f MPa "
+             "in 3D (nu: the lattice's Poisson ratio along an axis, %.3f and %.3f; the continuum's 1/3 and 1/4). Stress: peak load over the prism's section. Middle damage: mean nodal damage of the middle half "
+             "(50 < y < 150 mm) at the end." % (own[PRISM] / 1e6, own[PRISM3D] / 1e6, nu[PRISM], nu[PRISM3D]), "",
              "| run | peak stress (MPa) | over E s0 / nu | over f_c | middle damage | steps | Newton | CPU (s) | end |",
              "|---|---|---|---|---|---|---|---|---|"]
     for name, _, path, _ in CASES:
@@ -132,16 +133,17 @@ def report():
             r["what"], sig / 1e6, sig / own[path], sig / FC, md, r["steps"], r["steps_kind"], r["newton_its"], r["cpu_s"], r["status"]))
     fs = res["faces"]
     e, s0 = abs(fs["eps"]), runs["prism_off"]["s0"]
-    confine = (0.25 * FC / E - s0) / (0.5 * FC / E)  # the 3D coefficient of src/material/laws.c
+    n3 = nu[PRISM3D]
+    confine = (n3 * FC / E - s0) / ((1 - 2 * n3) * FC / E)  # the 3D coefficient of src/material/laws.c
     onset = E * s0 / (fs["core_max_stretch"] / e - confine * abs(fs["core_dilatation"]) / e)
     lines += ["", "Why the 3D prism falls short. The elastic 3D prism at eps = %.0e (`%s`), nodes of the middle half: the lateral "
-              "strain is %.2f |eps|, against the nu = 1/4 the rise is calibrated with; the largest bond stretch is %.2f |eps| in the "
+              "strain is %.2f |eps|, against the lattice's nu = %.3f the rise is calibrated with; the largest bond stretch is %.2f |eps| in the "
               "core (within 20 mm of the axis) and %.2f |eps| in the outer layer of the free faces; the dilatation %.2f |eps| in the "
-              "core (0.5 |eps| assumed). In 3D the onset is the small difference of the lateral stretch and the rise (nu - confine k "
+              "core (%.2f |eps| assumed). In 3D the onset is the small difference of the lateral stretch and the rise (nu - confine k "
               "= f_t / f_c), so a lateral stretch above the assumed one moves it far: with the core's values the bonds across the load "
               "soften from |sigma| = %.1f MPa (%.2f f_c)." % (
-                  fs["eps"], " ".join(fs["options"]), fs["lateral_strain"] / e, fs["core_max_stretch"] / e, fs["face_max_stretch"] / e,
-                  abs(fs["core_dilatation"]) / e, onset / 1e6, onset / FC)]
+                  fs["eps"], " ".join(fs["options"]), fs["lateral_strain"] / e, n3, fs["core_max_stretch"] / e, fs["face_max_stretch"] / e,
+                  abs(fs["core_dilatation"]) / e, 1 - 2 * n3, onset / 1e6, onset / FC)]
     b0, b1 = runs["beam_off"], runs["beam_on"]
     lines += ["", "A flexural crack with and without `-pd_fc` (`options/gregoire_d50_hn.opts -pd_dx 0.01`): peak %.1f N without, "
               "%.1f N with (relative change %.1e); %d and %d steps, %d and %d Newton iterations." % (

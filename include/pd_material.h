@@ -7,6 +7,7 @@ PetscReal PDInfluenceValue(PDInfluence, PetscReal len, PetscReal horizon);
 PetscReal PDInfluenceMoment(PDInfluence, PetscInt k); /* int_0^1 omega(r) r^k dr */
 PetscReal PDLatticeFractureRatio(const PDScene *);
 PetscReal PDLatticeStiffnessRatio(const PDScene *); /* the lattice bulk's Young's modulus along an axis over the continuum's */
+PetscReal PDLatticePoissonRatio(const PDScene *);   /* the lattice bulk's Poisson ratio under uniaxial stress along an axis */
 
 /* Bond states the damage limiter hands out one level at a time: elastic, then the softening branch in
    -pd_limiter_sublevels parts (geometric in stretch from s0 to sc), then broken. */

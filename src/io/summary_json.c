@@ -201,9 +201,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   PetscCall(PetscFPrintf(comm, fp, "  \"bonds_cut_by_notches\": %" PetscInt_FMT ",\n  \"surface_correction_range\": [%.6e, %.6e],\n",
                          m->bonds->ncut, (double)m->bonds->lambda_min, (double)m->bonds->lambda_max));
   /* the lattice bulk's modulus along an axis over the continuum's, with the continuum micromodulus: what
-     -pd_calibration stencil divides out, and what the continuum calibration's results converge to */
-  PetscCall(PetscFPrintf(comm, fp, "  \"calibration\": \"%s\",\n  \"lattice_stiffness_ratio\": %.6f,\n",
-                         PDCalibrationNames[sc->calibration], (double)PDLatticeStiffnessRatio(sc)));
+     -pd_calibration stencil divides out, and what the continuum calibration's results converge to; and its
+     Poisson ratio along an axis, which -pd_fc's rise is calibrated with */
+  PetscCall(PetscFPrintf(comm, fp, "  \"calibration\": \"%s\",\n  \"lattice_stiffness_ratio\": %.6f,\n  \"lattice_poisson_ratio\": %.6f,\n",
+                         PDCalibrationNames[sc->calibration], (double)PDLatticeStiffnessRatio(sc), (double)PDLatticePoissonRatio(sc)));
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT
                          ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n",

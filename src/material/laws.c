@@ -75,11 +75,12 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) 
   Thresholds(law, 5 * geo, &t);
   law->nominal = t;
   if (mat->fc > 0 && law->kind != PD_LAW_ELASTIC) {
-    /* Uniaxial compression eps < 0 stretches the bonds across it by nu |eps| (bond-based lattice: nu = 1/4 in
-       3D, 1/3 in the plane) and gives the nodes the dilatation k eps, k = 1 - 2 nu (3D) or 1 - nu (plane):
-       without a rise, the lateral bonds soften at |sigma| = E s0 / nu. A rise of confine times the
-       compression -theta puts that at |sigma| = fc: nu fc / E = s0 + confine k fc / E. */
-    const PetscReal nu = sc->dim == 3 ? 0.25 : 1.0 / 3, k = sc->dim == 3 ? 1 - 2 * nu : 1 - nu;
+    /* Uniaxial compression eps < 0 along a lattice axis stretches the bonds across it by nu |eps| and gives
+       the nodes the dilatation k eps, k = 1 - 2 nu (3D) or 1 - nu (plane), nu the stencil's own Poisson
+       ratio (the continuum's 1/4 or 1/3 is not the lattice's, and the onset below is the small difference
+       of two terms): without a rise, the lateral bonds soften at |sigma| = E s0 / nu. A rise of confine
+       times the compression -theta puts that at |sigma| = fc: nu fc / E = s0 + confine k fc / E. */
+    const PetscReal nu = PDLatticePoissonRatio(sc), k = sc->dim == 3 ? 1 - 2 * nu : 1 - nu;
     law->confine = (nu * mat->fc / mat->E - t.s0) / (k * mat->fc / mat->E);
     PetscCheck(law->confine > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
                "Option %s_fc: %g Pa is not above the compressive strength the lattice has without it, E s0 / nu = %g Pa", mat->option,

@@ -51,20 +51,35 @@ static PetscReal ContinuumMicromodulus(const PDScene *sc, PetscReal E, PetscBool
    = 16 E / 15 (plane strain, nu = 1/4). One-point quadrature over the stencil misses the horizon's curved
    edge: the ratio is 0.74 to 0.85 in 3D for m = 3 to 4, and it does not tend to 1 under refinement at a
    fixed m (docs/calibration.md). */
-PetscReal PDLatticeStiffnessRatio(const PDScene *sc) {
+static void StencilConstants(const PDScene *sc, PetscReal *c11, PetscReal *c12) {
   const PetscReal m = sc->horizon_ratio, c = ContinuumMicromodulus(sc, 1, PETSC_TRUE);
-  PetscReal       c11 = 0, c12 = 0, Elat;
   PetscInt        st[4] = {0, 0, 0, -1};
 
+  *c11 = *c12 = 0;
   while (PDFamilyNext(m, sc->dim, st)) {
     const PetscInt  i = st[0], j = st[1], n2 = st[3];
     const PetscReal len = PetscSqrtReal((PetscReal)n2);
     const PetscReal w   = 0.5 * c * PDInfluenceValue(sc->influence, len, m) * PDFamilyPartialVolume(m, n2, sc->partial_volume) * len;
-    c11 += w * (i * i) * (i * i) / (PetscReal)(n2 * n2);
-    c12 += w * (i * i) * (j * j) / (PetscReal)(n2 * n2);
+    *c11 += w * (i * i) * (i * i) / (PetscReal)(n2 * n2);
+    *c12 += w * (i * i) * (j * j) / (PetscReal)(n2 * n2);
   }
+}
+
+PetscReal PDLatticeStiffnessRatio(const PDScene *sc) {
+  PetscReal c11, c12, Elat;
+
+  StencilConstants(sc, &c11, &c12);
   Elat = sc->dim == 3 ? (c11 - c12) * (c11 + 2 * c12) / (c11 + c12) : (c11 * c11 - c12 * c12) / c11;
   return Elat / (sc->model == PD_MODEL_PLANE_STRAIN ? 16.0 / 15.0 : 1.0);
+}
+
+/* The stencil's Poisson ratio under uniaxial stress along an axis: C12 / (C11 + C12) in 3D, C12 / C11 in the
+   plane. The continuum bond-based values are 1/4 and 1/3 (C11 = 3 C12); the stencil's differ with m. */
+PetscReal PDLatticePoissonRatio(const PDScene *sc) {
+  PetscReal c11, c12;
+
+  StencilConstants(sc, &c11, &c12);
+  return sc->dim == 3 ? c12 / (c11 + c12) : c12 / c11;
 }
 
 /* The bond constant c0 of material modulus E: the continuum micromodulus, divided by the lattice's stiffness
