@@ -167,10 +167,11 @@ def coarse():
         check(rel(w, w_ref) < 1e-8, "dx = %g: tip deflection %.12e m, CG on AIJ %.12e m" % (dx, w, w_ref))
 
 
-def lattice_ratio(m, dim):
+def lattice_ratio(m, dim, poisson=False):
     """Young's modulus along a lattice axis of the bulk stencil over the continuum's (3D, plane stress), for
     the continuum micromodulus with the constant influence function: the stencil's full stiffness tensor
-    C_abcd = 1/2 sum c beta |xi| e_a e_b e_c e_d inverted in Voigt form (no symmetry assumed), dx = 1."""
+    C_abcd = 1/2 sum c beta |xi| e_a e_b e_c e_d inverted in Voigt form (no symmetry assumed), dx = 1.
+    With poisson, the Poisson ratio under uniaxial stress along that axis instead, -S_12 / S_11."""
     R = int(math.floor(m)) + 1
     c = 12 / (math.pi * m ** 4) if dim == 3 else 9 / (math.pi * m ** 3)
     C = np.zeros((3, 3, 3, 3))
@@ -186,7 +187,8 @@ def lattice_ratio(m, dim):
                 C += 0.5 * c * beta * r * np.einsum("a,b,c,d->abcd", e, e, e, e)
     idx = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)] if dim == 3 else [(0, 0), (1, 1), (0, 1)]
     V = np.array([[C[a[0], a[1], b[0], b[1]] for b in idx] for a in idx])
-    return 1 / np.linalg.inv(V)[0, 0]
+    S = np.linalg.inv(V)
+    return -S[0, 1] / S[0, 0] if poisson else 1 / S[0, 0]
 
 
 def calibration():
@@ -199,9 +201,16 @@ def calibration():
         r = run("bar_tension", "-pd_dx", 0.02, "-pd_horizon_ratio", m, "-pd_calibration", "stencil")
         got, want = r.summary["lattice_stiffness_ratio"], lattice_ratio(m, 3)
         check(abs(got - want) < 1e-6, "3D m = %.4f: lattice stiffness ratio %.6f, independent %.6f" % (m, got, want))
+        # the Poisson ratio that -pd_fc's rise is calibrated with (docs/softening.md, "Compression")
+        got, want = r.summary["lattice_poisson_ratio"], lattice_ratio(m, 3, poisson=True)
+        check(abs(got - want) < 1e-6, "3D m = %.4f: lattice Poisson ratio %.6f, independent %.6f" % (m, got, want))
         check("stencil_calibration" in r.summary["corrections"], "corrections name the stencil calibration")
-    got = run("bar_tension_2d", "-pd_calibration", "stencil").summary["lattice_stiffness_ratio"]
+    s2 = run("bar_tension_2d", "-pd_calibration", "stencil").summary
+    got = s2["lattice_stiffness_ratio"]
     check(abs(got - lattice_ratio(math.pi, 2)) < 1e-6, "plane stress m = pi: ratio %.6f, independent %.6f" % (got, lattice_ratio(math.pi, 2)))
+    got = s2["lattice_poisson_ratio"]
+    check(abs(got - lattice_ratio(math.pi, 2, poisson=True)) < 1e-6,
+          "plane stress m = pi: Poisson ratio %.6f, independent %.6f" % (got, lattice_ratio(math.pi, 2, poisson=True)))
     # plane stress bar at m = pi: the error halves with dx and is within 1 % at dx = 2.5 mm
     err = {}
     for dx in (0.01, 0.005, 0.0025):
