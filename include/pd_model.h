@@ -74,6 +74,8 @@ typedef enum {
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 PetscErrorCode PDModelDestroy(PDModel *);
+/* Per-bond thresholds as built (strength scatter, surface correction), without crushing's rises. */
+void PDModelResetThresholds(PDModel *);
 #define PD_MAX_EFFECTS 10
 PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);

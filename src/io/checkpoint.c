@@ -184,6 +184,18 @@ static PetscErrorCode CheckValues(const PDModel *m, PetscViewer v, PetscInt nvec
   }
   PetscCall(VecDestroy(&x));
   PetscCall(VecDestroy(&y));
+  if (ok && m->shift) { /* crushing's rises: present, finite, not negative */
+    PetscCall(PetscViewerHDF5HasDataset(v, "threshold_rise", &ok));
+    if (ok) {
+      PetscCall(HistoryVecs(m, &x, &y));
+      PetscCall(PetscObjectSetName((PetscObject)x, "threshold_rise"));
+      PetscCall(VecLoad(x, v));
+      PetscCall(VecInRange(x, 0, PD_KAPPA_MAX, 0, -1, &ok));
+      PetscCall(VecDestroy(&x));
+      PetscCall(VecDestroy(&y));
+    }
+    if (!ok) PetscCall(PetscSNPrintf(bad, len, "its threshold rises (-pd_fc) are missing, not finite or outside [0, %g]", PD_KAPPA_MAX));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -283,11 +283,6 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
     if (bd->lambda || sc->strength_scatter > 0 || crush) {
       PetscCall(PetscMalloc1(nb, &m->thr));
-      for (PetscInt e = 0; e < bd->nbonds; e++) {
-        PDLaw law = m->law[bd->material[e]];
-        law.ft *= 1 + sc->strength_scatter * PDUnitFromId(PDBondGlobalId(lat, bd, e));
-        PDLawBondThresholds(&law, bd->lambda ? bd->lambda[e] : 1, &m->thr[e]);
-      }
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
     }
     if (crush) {
@@ -295,6 +290,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
       PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
     }
+    PDModelResetThresholds(m);
   }
   if (sc->nbars) {
     if (!m->softening) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->stretch)); /* the commit's scratch */
@@ -308,6 +304,18 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     PetscCall(MPIU_Allreduce(&mine, &m->history_bytes, 1, MPIU_INT64, MPI_SUM, lat->comm));
   }
   PetscFunctionReturn(0);
+}
+
+void PDModelResetThresholds(PDModel *m) {
+  const PDBonds *bd = m->bonds;
+
+  if (!m->thr) return;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    PDLaw law = m->law[bd->material[e]];
+    law.ft *= 1 + m->scene->strength_scatter * PDUnitFromId(PDBondGlobalId(m->lat, bd, e));
+    PDLawBondThresholds(&law, bd->lambda ? bd->lambda[e] : 1, &m->thr[e]);
+    if (m->shift) m->shift[e] = 0;
+  }
 }
 
 PetscErrorCode PDModelDestroy(PDModel *m) {

@@ -91,10 +91,7 @@ static PetscErrorCode ReadLaw(PetscOptionItems *PetscOptionsObject, PDScene *sc,
   PetscCheck(m->ft > 0 || m->law == PD_LAW_ELASTIC || m->law == PD_LAW_LINEAR || (m->law == PD_LAW_BILINEAR && !m->bobaru), PETSC_COMM_SELF,
              PETSC_ERR_USER_INPUT, "Option %s_ft: the %s law needs a positive tensile strength, got %g", m->option, PDLawNames[m->law],
              (double)m->ft);
-  PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_fc", &m->fc, NULL));
-  PetscCheck(m->fc == 0 || m->law != PD_LAW_ELASTIC, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             "Option %s_fc: a compressive strength needs a softening law (%s_law), the elastic law has no threshold to raise", m->option,
-             m->option);
+  PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_fc", &m->fc, NULL)); /* material data, like _ft: an elastic law ignores it */
   PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_fcm", &fcm, &set_fcm));
   if (set_fcm) m->Gf = 73 * PetscPowReal(fcm, 0.18); /* fib MC2010; a given _Gf overrides it */
   PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_Gf", &m->Gf, NULL));

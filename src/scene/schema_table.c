@@ -153,7 +153,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .range  = "[0, inf)",
      .help   = "Compressive strength for crushing: a bond's tensile thresholds rise with the compression (dilatation) of its two nodes, "
                "so that uniaxial compression fails at fc instead of at the lattice's own E s0 / nu (about 3 ft); 0 (default): the "
-               "thesis' bond, whose thresholds ignore compression. Softening laws only (docs/softening.md, Compression)"},
+               "thesis' bond, whose thresholds ignore compression. Material data: accepted with every law, used by the softening ones "
+               "(docs/softening.md, Compression)"},
     {.name     = "_fcm",
      .family   = MAT,
      .base     = PETSC_TRUE,

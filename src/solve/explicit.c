@@ -464,6 +464,7 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
   c->stopped = c->cmod_reached = c->blew_up = c->interrupted = PETSC_FALSE;
   if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
+  PDModelResetThresholds(m); /* a trial's rises under compression (-pd_fc) are history too */
   if (m->scene->nbars) {
     PetscCall(PetscArrayzero(m->sp_n, m->bonds->nseg));
     PetscCall(PetscArrayzero(m->ruptured_n, m->bonds->nseg));
