@@ -33,7 +33,7 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import EXE, GREGOIRE_DATA, OUT, RESULTS_DIR, ROOT, experiment_peaks, load_results, run_timed, store_result  # noqa: E402
+from common import EXE, GREGOIRE_DATA, OUT, RESULTS_DIR, ROOT, experiment_peaks, last_fields, load_results, run_timed, store_result  # noqa: E402
 
 DATA = os.path.join(RESULTS_DIR, "calibration.json")
 RATIOS = {"3": 3.0, "pi": math.pi, "4": 4.0}
@@ -52,11 +52,7 @@ def timoshenko(P=1e4, L=1.0, E=30e9, b=0.1, h=0.1, nu=0.25, k=5.0 / 6.0):
 
 def bar_strain(outdir):
     """Axial strain in the middle third of the bar: slope of the layer-mean u_x against x."""
-    import h5py
-    with h5py.File(os.path.join(outdir, "fields.h5"), "r") as f:
-        g = f["fields"]
-        key = sorted(k for k in g if k.startswith("displacement_"))[-1]
-        x, u = np.array(g["coordinates"]), np.array(g[key])
+    x, u, _ = last_fields(outdir)
     sel = (x[:, 0] > 0.5 / 3) & (x[:, 0] < 1.0 / 3)
     layers = np.unique(np.round(x[sel, 0], 9))
     return np.polyfit(layers, [u[sel & (np.abs(x[:, 0] - xl) < 1e-9), 0].mean() for xl in layers], 1)[0]

@@ -17,6 +17,20 @@ OUT = os.environ.get("PD_REPORT_DIR", RESULTS_DIR)
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 
 
+def last_fields(outdir):
+    """Node coordinates, displacement and nodal damage of the last fields a run wrote to outdir/fields.h5,
+    or None where it wrote none (an explicit run that stops unstable)."""
+    import h5py
+    import numpy as np
+    path = os.path.join(outdir, "fields.h5")
+    if not os.path.exists(path):
+        return None
+    with h5py.File(path, "r") as f:
+        g = f["fields"]
+        key = sorted(k for k in g if k.startswith("displacement_"))[-1]
+        return np.array(g["coordinates"]), np.array(g[key]), np.array(g[key.replace("displacement", "damage")]).ravel()
+
+
 def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT, grace=600):
     """Runs cmd (output to the open files given), stopped after timeout seconds: SIGTERM, on which
     pdimplicit finishes the step under way and writes what it traced (status 'interrupted'), then SIGKILL

@@ -14,7 +14,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results
+from common import EXE, OUT, RESULTS_DIR, ROOT, last_fields, load_results, run_timed, save_results
 
 JSON = os.path.join(RESULTS_DIR, "compression.json")
 PRISM = os.path.join(ROOT, "options", "prism_compression_2d.opts")
@@ -40,14 +40,10 @@ CASES = [
 
 def middle_damage(outdir):
     """Mean nodal damage of the prism's middle half (50 < y < 150 mm) at the last fields written."""
-    import h5py
-    import numpy as np
-    if not os.path.exists(os.path.join(outdir, "fields.h5")):
+    fields = last_fields(outdir)
+    if fields is None:
         return None  # an explicit run that stops unstable writes no fields
-    with h5py.File(os.path.join(outdir, "fields.h5"), "r") as f:
-        g = f["fields"]
-        key = sorted(k for k in g if k.startswith("damage_"))[-1]
-        x, d = np.array(g["coordinates"]), np.array(g[key]).ravel()
+    x, _, d = fields
     mid = (x[:, 1] > 0.05) & (x[:, 1] < 0.15)
     return float(d[mid].mean())
 
@@ -56,16 +52,13 @@ def face_stretch():
     """The elastic 3D prism at eps = -5e-4: the largest bond stretch and the dilatation (the pdimplicit formula
     with w = |xi|^2) of its nodes in the middle half, in the core (more than a horizon from the faces) and in the
     outer layer of the free faces x = 0 and x = 0.1 m; and the lateral strain (slope of u_x over x)."""
-    import h5py
     import numpy as np
     out = tempfile.mkdtemp(prefix="pdbench_")
     opts = ["-pd_law", "elastic", "-pd_fc", "0", "-pd_steps", "1", "-pd_region2_displacement", "0,-0.0001,0"]
     with open(os.path.join(out, "log"), "w") as log:
         run_timed([EXE, "-options_file", PRISM3D, "-pd_output_dir", out, *opts], 600, log)
-    with h5py.File(os.path.join(out, "fields.h5"), "r") as f:
-        g = f["fields"]
-        x = np.array(g["coordinates"])
-        u = np.array(g[sorted(k for k in g if k.startswith("displacement_"))[-1]]).reshape(-1, 3)
+    x, u, _ = last_fields(out)
+    u = u.reshape(-1, 3)
     delta = np.pi * 0.01
     smax, theta = np.zeros(len(x)), np.zeros(len(x))
     for i in range(len(x)):

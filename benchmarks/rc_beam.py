@@ -14,7 +14,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, load_results
+from common import EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results
 
 JSON = os.path.join(RESULTS_DIR, "rc_beam.json")
 SCENE = os.path.join(ROOT, "options", "rc_beam_2d.opts")
@@ -44,12 +44,8 @@ def section():
 
 def delaminated(outdir):
     """Length (m) of the bar's node line whose nodal damage exceeds 0.5 at the last fields written."""
-    import h5py
     import numpy as np
-    with h5py.File(os.path.join(outdir, "fields.h5"), "r") as f:
-        g = f["fields"]
-        key = sorted(k for k in g if k.startswith("damage_"))[-1]
-        x, d = np.array(g["coordinates"]), np.array(g[key]).ravel()
+    x, _, d = last_fields(outdir)
     on = np.abs(x[:, 1] - 0.035) < 1e-9
     return float(np.sum(d[on] > 0.5)) * 0.01
 
