@@ -37,7 +37,13 @@ typedef struct {
 } PDLaw;
 
 PetscErrorCode PDLawSetUp(const PDScene *, const PDMaterial *, PDLaw *);
-void           PDLawBondThresholds(const PDLaw *, PetscReal lambda, PDLawBond *);
+/* Moves a bond's three thresholds by d (crushing's rise under compression, -pd_fc). */
+static inline void PDLawBondRaise(PDLawBond *t, PetscReal d) {
+  t->s0 += d;
+  t->s1 += d;
+  t->sc += d;
+}
+void PDLawBondThresholds(const PDLaw *, PetscReal lambda, PDLawBond *);
 /* Damage d(kappa) and its derivative; kappa >= 0. */
 PetscReal PDLawDamage(const PDLaw *, const PDLawBond *, PetscReal kappa, PetscReal *dd);
 /* Area under the envelope g/c from 0 to kappa (capped at sc), per unit micromodulus: the work that took

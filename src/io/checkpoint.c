@@ -57,6 +57,7 @@ static const char *const total_names[] = {"steps", "newton_its", "ksp_its", "max
 /* A largest stretch beyond this is no state a path reaches; it only guards the arithmetic (kappa^2). */
 #define PD_KAPPA_MAX 1e6
 
+static PetscErrorCode IncidenceVec(const PDModel *m, const char *name, Vec *v);
 static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level);
 /* bar segments: plastic stretch, rupture (0 or 1), dissipated energy (J), over the same entries */
 static const char *const steel_names[] = {"steel_plastic_stretch", "steel_ruptured", "steel_dissipated"};
@@ -187,12 +188,10 @@ static PetscErrorCode CheckValues(const PDModel *m, PetscViewer v, PetscInt nvec
   if (ok && m->shift) { /* crushing's rises: present, finite, not negative */
     PetscCall(PetscViewerHDF5HasDataset(v, "threshold_rise", &ok));
     if (ok) {
-      PetscCall(HistoryVecs(m, &x, &y));
-      PetscCall(PetscObjectSetName((PetscObject)x, "threshold_rise"));
+      PetscCall(IncidenceVec(m, "threshold_rise", &x));
       PetscCall(VecLoad(x, v));
       PetscCall(VecInRange(x, 0, PD_KAPPA_MAX, 0, -1, &ok));
       PetscCall(VecDestroy(&x));
-      PetscCall(VecDestroy(&y));
     }
     if (!ok) PetscCall(PetscSNPrintf(bad, len, "its threshold rises (-pd_fc) are missing, not finite or outside [0, %g]", PD_KAPPA_MAX));
   }
@@ -356,15 +355,19 @@ static PetscErrorCode ReadSteel(PDModel *m, PetscViewer viewer) {
   PetscFunctionReturn(0);
 }
 
-/* Bond history as two vectors over the incidence entries of owned nodes (see the head of the file). */
-static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level) {
-  const PetscInt n = m->bonds->inc_start[m->lat->nowned];
-
+/* A per-bond quantity as a vector over the incidence entries of owned nodes (see the head of the file). */
+static PetscErrorCode IncidenceVec(const PDModel *m, const char *name, Vec *v) {
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(m->lat->comm, n, PETSC_DETERMINE, kappa));
-  PetscCall(VecDuplicate(*kappa, level));
-  PetscCall(PetscObjectSetName((PetscObject)*kappa, "kappa"));
-  PetscCall(PetscObjectSetName((PetscObject)*level, "level"));
+  PetscCall(VecCreateMPI(m->lat->comm, m->bonds->inc_start[m->lat->nowned], PETSC_DETERMINE, v));
+  PetscCall(PetscObjectSetName((PetscObject)*v, name));
+  PetscFunctionReturn(0);
+}
+
+/* Bond history as two such vectors. */
+static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level) {
+  PetscFunctionBeginUser;
+  PetscCall(IncidenceVec(m, "kappa", kappa));
+  PetscCall(IncidenceVec(m, "level", level));
   PetscFunctionReturn(0);
 }
 
@@ -399,14 +402,12 @@ static PetscErrorCode WriteHistory(const PDModel *m, const PetscReal *kappa_prev
   PetscCall(VecDestroy(&L));
   PetscCall(VecDestroy(&Kp));
   if (m->shift) { /* crushing's rise of the thresholds, over the same entries */
-    PetscCall(HistoryVecs(m, &K, &L));
-    PetscCall(PetscObjectSetName((PetscObject)K, "threshold_rise"));
+    PetscCall(IncidenceVec(m, "threshold_rise", &K));
     PetscCall(VecGetArray(K, &k));
     for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) k[p] = m->shift[bd->inc_bond[p]];
     PetscCall(VecRestoreArray(K, &k));
     PetscCall(VecView(K, v));
     PetscCall(VecDestroy(&K));
-    PetscCall(VecDestroy(&L));
   }
   PetscFunctionReturn(0);
 }
@@ -415,25 +416,21 @@ static PetscErrorCode WriteHistory(const PDModel *m, const PetscReal *kappa_prev
    both ends owned is read twice: the rise is set, not added. */
 static PetscErrorCode ReadRise(PDModel *m, PetscViewer v) {
   const PDBonds     *bd = m->bonds;
-  Vec                R, unused;
+  Vec                R;
   const PetscScalar *r;
 
   PetscFunctionBeginUser;
-  PetscCall(HistoryVecs(m, &R, &unused));
-  PetscCall(PetscObjectSetName((PetscObject)R, "threshold_rise"));
+  PetscCall(IncidenceVec(m, "threshold_rise", &R));
   PetscCall(VecLoad(R, v));
   PetscCall(VecGetArrayRead(R, &r));
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
     const PetscInt  e = bd->inc_bond[p];
     const PetscReal d = PetscRealPart(r[p]) - m->shift[e];
-    m->thr[e].s0 += d;
-    m->thr[e].s1 += d;
-    m->thr[e].sc += d;
+    PDLawBondRaise(&m->thr[e], d);
     m->shift[e] += d;
   }
   PetscCall(VecRestoreArrayRead(R, &r));
   PetscCall(VecDestroy(&R));
-  PetscCall(VecDestroy(&unused));
   PetscFunctionReturn(0);
 }
 

@@ -51,9 +51,7 @@ PetscErrorCode PDModelConfine(PDModel *m, const PetscReal *s) {
     const PetscReal rise = law->confine * PetscMax(0, -0.5 * PetscRealPart(th[bd->a[e]] + th[bd->b[e]]));
     /* only a bond that has not begun to soften: raising the thresholds of a softened one would heal it */
     if (law->confine == 0 || m->kappa[e] >= t->s0 || rise <= m->shift[e]) continue;
-    t->s0 += rise - m->shift[e];
-    t->s1 += rise - m->shift[e];
-    t->sc += rise - m->shift[e];
+    PDLawBondRaise(t, rise - m->shift[e]);
     m->shift[e] = rise;
   }
   PetscCall(VecRestoreArrayRead(loc, &th));

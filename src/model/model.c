@@ -637,11 +637,7 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
   names[n++] = "elasticity";
   if (soft) names[n++] = "softening_damage";
   if (brk) names[n++] = "bond_breaking";
-  for (PetscInt k = 0; k < sc->nmaterials; k++)
-    if (m->law[k].confine > 0) {
-      names[n++] = "crushing";
-      break;
-    }
+  if (m->shift) names[n++] = "crushing"; /* allocated where a material's -pd_fc raises thresholds */
   if (sc->nbars) names[n++] = "steel_plasticity";
   for (PetscInt k = 0; k < sc->nbars; k++)
     if (sc->bar[k].rupture > 0) {
