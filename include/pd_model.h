@@ -16,7 +16,7 @@ typedef struct {
   Vec              u_local;                   /* ghosted work copy of the displacement */
   Vec              f_local;                   /* ghosted work vector for internal forces */
   Vec              x_local;                   /* ghosted work vector for tangent products (created on first use) */
-  PetscReal       *ka, *kb;                   /* per-bond tangent scalars; NULL while the tangent is constant */
+  PetscReal       *ka, *kb;                   /* bond tangent scalars, NULL while constant (kb also under small kinematics) */
   PetscReal       *kp;                        /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
   PDLaw            law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_ELASTIC */
   PDSteel          steel[PD_MAX_BARS];        /* the steel of each bar */

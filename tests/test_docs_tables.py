@@ -14,7 +14,8 @@ REPORTS = {"accuracy_cost.py": ["accuracy_cost.md"], "gregoire.py": ["gregoire.m
            "explicit_ramp.py": ["explicit_ramp.md"], "hard_cases.py": ["hard_cases.md"], "blas.py": ["blas.md"],
            "rc_beam.py": ["rc_beam.md"], "calibration.py": ["calibration.md"],
            "halfnotched.py": ["halfnotched.md"], "pc_refresh.py": ["pc_refresh.md"],
-           "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"]}
+           "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"],
+           "partition.py": ["partition.md"]}
 
 
 def main():

@@ -195,7 +195,8 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
   PetscFunctionReturn(0);
 }
 
-/* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4).
+/* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4);
+   kb is NULL under small kinematics, where it is zero.
    With kp, also the ka of the preconditioning matrix: a softening slope g' < 0 replaced by the secant g/s,
    which is positive, so that matrix stays definite where the tangent is not (-pd_pc_matrix secant). */
 PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp) {
@@ -212,7 +213,7 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
     BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
     BondForce(m, e, s, &g, &gp);
     ka[e] = gp * q - (geometric ? g / L : 0);
-    kb[e] = geometric ? g / L : 0;
+    if (kb) kb[e] = geometric ? g / L : 0;
     if (kp) kp[e] = gp < 0 && s > 0 ? ka[e] + (g / s - gp) * q : ka[e];
   }
   PetscCall(PetscLogEventEnd(PD_LOG.tangent, 0, 0, 0, 0));

@@ -269,7 +269,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   PetscCall(SetupConstraints(m));
   PetscCall(SetupPatterns(m));
   PetscCall(SetupScale(m));
-  if (!m->linear) PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &m->ka, PetscMax(1, bd->nbonds), &m->kb));
+  if (!m->linear) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->ka));
+  /* the tangent's kb I part is the geometric term: zero under small kinematics, where no array is kept for it */
+  if (!m->linear && sc->kinematics == PD_KINEMATICS_FINITE) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->kb));
   /* IMPL-EX's matrix is the secant one already: no second matrix for it */
   if (!m->linear && m->softening && sc->pc_matrix == PD_PC_MATRIX_SECANT && sc->arc_implex == 0)
     PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->kp));
@@ -331,7 +333,8 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->cmod_pattern));
   PetscCall(VecDestroy(&m->f_work));
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
-  PetscCall(PetscFree2(m->ka, m->kb));
+  PetscCall(PetscFree(m->ka));
+  PetscCall(PetscFree(m->kb));
   PetscCall(PetscFree(m->kp));
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
