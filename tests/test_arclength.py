@@ -485,7 +485,11 @@ def gamg_switch():
     # once with ICC(0) throughout and once with Krylov solves capped at 80 iterations, which ICC(0) exceeds
     # in the first increment. The second run says it switched, names GAMG as its solver, and traces the
     # same curve to 1e-6 of the load on every row (both solve each increment to the same tolerance).
-    args = ("-pd_dx", 0.0125, "-pd_stop_cmod", 5e-5)
+    # The linear solves are tight (no Eisenstat-Walker): the limiter grants bond events at Newton iterates
+    # whose linear systems Eisenstat-Walker leaves inexact, so at default tolerances the preconditioner
+    # shows in the path once events follow one another within an increment (measured: the increment after
+    # the peak 0.4 % apart, and 10 against 11 increments); the switch itself must change nothing
+    args = ("-pd_dx", 0.0125, "-pd_stop_cmod", 5e-5, "-snes_ksp_ew", 0, "-ksp_rtol", 1e-10)
     ref = run("eccentric_notch_3d", *args)
     r = run("eccentric_notch_3d", *args, "-ksp_max_it", 80)
     check("going on with GAMG" in r.stdout and "gamg" in r.summary["solver"] and "bjacobi" in ref.summary["solver"],

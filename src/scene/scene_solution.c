@@ -69,6 +69,7 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_max_bonds", &sc->limiter_max, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_stage_its", &sc->limiter_stage_its, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_sublevels", &sc->limiter_sublevels, NULL));
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_limiter_settle_first", &sc->limiter_settle_first, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_fields_every", &sc->fields_every, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_checkpoint_every", &sc->checkpoint_every, NULL));
   PetscCall(PDOptionString(PetscOptionsObject, sc, "-pd_restart", sc->restart, sizeof sc->restart, NULL));

@@ -479,6 +479,12 @@ const PDOptionSpec PDOptionSchema[] = {
      .range = "[1, inf)",
      .when  = PD_WHEN_IMPLICIT,
      .help  = "Newton iterations between two grants of the limiter while events are pending"},
+    {.name = "-pd_limiter_settle_first",
+     .type = PD_OPTION_BOOL,
+     .def  = "false",
+     .when = PD_WHEN_CONTROL,
+     .help = "Under load or displacement control, bring each increment to equilibrium before the limiter's first grant; false: the "
+             "increment's first Newton iteration is already a limiter stage (docs/solvers.md)"},
     {.name  = "-pd_limiter_sublevels",
      .type  = PD_OPTION_INT,
      .def   = "1",

@@ -23,13 +23,14 @@ PetscErrorCode PDPathStopCriteria(const PDScene *, PDRecord *, const PDCurveRow 
    dlam_last: its fallback where it finds no equilibrium. */
 PetscErrorCode PDArcLengthTakeOver(PDModel *, PDRecord *, const PDPath *, PetscReal dlam_last);
 
-/* When to rebuild the preconditioner (src/solve/pc_refresh.c): every third assembly, or, for 3D models
-   under GAMG, when the Krylov solver finds it stale. Under SNES (snes given) the decision reaches SNES as
-   its lag; otherwise PDPCRefreshAssembled tells the KSP, after every assembly of its operator, whether
-   to reuse the preconditioner. */
+/* When to rebuild the preconditioner (src/solve/pc_refresh.c): every sixth assembly for block ICC(0) in
+   3D, every third for the others, or, for 3D models under GAMG, when the Krylov solver finds it stale.
+   Under SNES (snes given) the decision reaches SNES as its lag; otherwise PDPCRefreshAssembled tells the
+   KSP, after every assembly of its operator, whether to reuse the preconditioner. */
 typedef struct {
   SNES      snes;       /* the SNES whose lag carries the decision, or NULL */
-  PetscBool when_stale; /* the policy: when stale, or every third assembly */
+  PetscBool when_stale; /* the policy: when stale, or every lag-th assembly */
+  PetscInt  lag;        /* assemblies between rebuilds under the fixed lag */
   PetscReal fresh;      /* Krylov iterations per decade of the first solve after the last rebuild */
   PetscBool due;        /* rebuild at the next assembly */
   PetscBool measure;    /* the next solve is the first after a rebuild */

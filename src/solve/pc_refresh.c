@@ -1,9 +1,13 @@
 /* When to rebuild the preconditioner of the tangent.
 
    Two policies:
-   - every third assembly (PD_FIXED_LAG), across Newton iterations, limiter stages and steps: block
-     ICC(0) and 2D models. The factor was 37 % of the half-notched beam's time when rebuilt every time;
-     a lag of 2 halved the run, 3 took it further, 5 gained nothing more. Rebuilding it only when stale
+   - a fixed lag across Newton iterations, limiter stages and steps: every sixth assembly for block
+     ICC(0) in 3D (PD_ICC_LAG), every third for 2D models (PD_FIXED_LAG). The factor was 37 % of the
+     half-notched beam's time when rebuilt every time; a lag of 2 halved the run, 3 took it further, 5
+     gained nothing more while each increment was settled twice. Once an increment's first Newton
+     iteration became a limiter stage (docs/design.md, point 42), most assemblies are stages' whose
+     linear solves ask little, and a lag of 6 halved the factorisations' time for a few more Krylov
+     iterations (docs/benchmarks/solve_profile.md). Rebuilding it only when stale
      gained nothing at 3,500 nodes (fewer factors, more Krylov iterations), and on the 2D beams it let
      left-preconditioned GMRES meet its tolerance on a preconditioned residual that no longer measured
      the true one, so that Newton stalled (docs/solvers.md).
@@ -17,6 +21,7 @@
 #include "path.h"
 
 #define PD_FIXED_LAG 3
+#define PD_ICC_LAG 6
 #define PD_STALE_FACTOR 2.0
 #define PD_STALE_SLACK 4.0
 
@@ -59,12 +64,14 @@ static PetscErrorCode MonitorSolve(SNES snes, PetscInt it, PetscReal fnorm, void
 
 PetscErrorCode PDPCRefreshAttach(const PDModel *m, KSP ksp, SNES snes, PDPCRefresh *r) {
   PC        pc;
-  PetscBool gamg;
+  PetscBool gamg, bjacobi;
 
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(r, sizeof *r));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCGAMG, &gamg));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBJACOBI, &bjacobi));
+  r->lag        = m->bs == 3 && bjacobi ? PD_ICC_LAG : PD_FIXED_LAG;
   r->snes       = snes;
   r->when_stale = m->bs == 3 && gamg ? PETSC_TRUE : PETSC_FALSE;
   r->due        = PETSC_TRUE;
@@ -73,14 +80,14 @@ PetscErrorCode PDPCRefreshAttach(const PDModel *m, KSP ksp, SNES snes, PDPCRefre
     PetscCall(SNESSetLagPreconditioner(snes, -2));
     PetscCall(SNESMonitorSet(snes, MonitorSolve, r, NULL));
   } else
-    PetscCall(SNESSetLagPreconditioner(snes, PD_FIXED_LAG));
+    PetscCall(SNESSetLagPreconditioner(snes, r->lag));
   PetscCall(SNESSetLagPreconditionerPersists(snes, PETSC_TRUE));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode PDPCRefreshAssembled(PDPCRefresh *r, KSP ksp) {
   PetscFunctionBeginUser;
-  if (!r->when_stale && r->assemblies++ % PD_FIXED_LAG == 0) r->due = PETSC_TRUE;
+  if (!r->when_stale && r->assemblies++ % r->lag == 0) r->due = PETSC_TRUE;
   if (r->due) r->measure = PETSC_TRUE;
   /* under SNES its lag has already told the KSP; the path-following driver tells it here */
   if (!r->snes) PetscCall(KSPSetReusePreconditioner(ksp, r->due ? PETSC_FALSE : PETSC_TRUE));

@@ -5,6 +5,8 @@
 #include "path.h"
 
 #define PD_MAX_STAGES 1000000
+/* share of Newton's absolute tolerance a linear solve stops at (Predict) */
+#define PD_KSP_ATOL_SHARE 0.5
 
 /* Krylov method and preconditioner for the stiffness, shared with path following. */
 PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
@@ -66,6 +68,19 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
      (docs/reinforcement.md) */
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
+  /* GMRES with block ICC(0) on a softening 3D model: preconditioned on the right, so that its residual is
+     the true one, which Eisenstat-Walker's tolerance is defined on and which Newton's own test measures
+     (Predict then stops each linear solve once it meets that test; docs/solvers.md "Tolerances") */
+  if (m->softening && m->bs == 3 && !PDModelDefaultsToGAMG(m)) {
+    KSP       ksp;
+    PC        pc;
+    PetscBool gmres, bjacobi;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBJACOBI, &bjacobi));
+    if (gmres && bjacobi) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+  }
   PetscCall(SNESSetFromOptions(snes));
   /* the preconditioner is rebuilt every third assembly or, for 3D models under GAMG, when the Krylov solver
      finds it stale (src/solve/pc_refresh.c), across Newton iterations, limiter stages and increments,
@@ -106,12 +121,26 @@ static PetscErrorCode Jacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
 static PetscErrorCode Predict(PDModel *m, SNES snes, PetscReal atol0, Vec r, Vec u, Vec du_prev, PetscReal ratio) {
   PetscReal rnorm, atol, rtol, stol;
   PetscInt  maxit;
+  KSP       ksp;
+  PCSide    side;
+  PetscBool ew, chosen;
 
   PetscFunctionBeginUser;
   PetscCall(PDModelResidual(snes, u, r, m));
   PetscCall(VecNorm(r, NORM_2, &rnorm));
   PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, NULL));
   PetscCall(SNESSetTolerances(snes, PetscMax(atol0, rtol * rnorm), rtol, stol, maxit, -1));
+  /* No linear solve needs a residual below the one Newton stops at: where the increment is nearly linear,
+     Eisenstat-Walker's tolerance falls far below it in the last iteration, and the Krylov iterations past
+     it bought nothing (docs/benchmarks/solve_profile.md). Under inexact Newton with a true-residual norm
+     (right preconditioning), each linear solve stops at PD_KSP_ATOL_SHARE of Newton's absolute tolerance;
+     fixed linear tolerances (-snes_ksp_ew false) and a -ksp_atol of the user's are left alone. */
+  PetscCall(SNESGetKSP(snes, &ksp));
+  PetscCall(KSPGetPCSide(ksp, &side));
+  PetscCall(SNESKSPGetUseEW(snes, &ew));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-ksp_atol", &chosen));
+  if (side == PC_RIGHT && ew && !chosen)
+    PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, PD_KSP_ATOL_SHARE * PetscMax(atol0, rtol * rnorm), PETSC_DEFAULT, PETSC_DEFAULT));
   if (ratio > 0) {
     PetscCall(VecAXPY(u, ratio, du_prev));
     PetscCall(PDModelApplyBoundaryValues(m, m->lambda, u));
@@ -188,10 +217,13 @@ typedef struct {
   char      why[128];
 } StepResult;
 
-/* One load increment: Newton stages until equilibrium holds with no deferred bond event. */
+/* One load increment: Newton stages until equilibrium holds with no deferred bond event. On a softening
+   scene the increment's first Newton iteration is already a limiter stage: bringing the increment to
+   equilibrium before the first grant (-pd_limiter_settle_first, the earlier default) settled it twice,
+   once before its events and once after, for the same curve (docs/benchmarks/solve_profile.md). */
 static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh, Vec u, StepResult *res) {
   const PDScene *sc      = m->scene;
-  PetscBool      limited = PETSC_FALSE;
+  PetscBool      limited = m->softening && !sc->limiter_settle_first ? PETSC_TRUE : PETSC_FALSE;
   PetscInt       maxit;
   PetscReal      atol, rtol, stol;
 
