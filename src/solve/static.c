@@ -36,7 +36,8 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
 }
 
 static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refresh) {
-  KSP ksp;
+  KSP       ksp;
+  PetscBool pc_chosen;
 
   PetscFunctionBeginUser;
   PetscCall(SNESSetType(snes, m->linear ? SNESKSPONLY : SNESNEWTONLS));
@@ -70,19 +71,19 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
   /* GMRES with block ICC(0) on a softening 3D model: preconditioned on the right, so that its residual is
      the true one, which Eisenstat-Walker's tolerance is defined on and which Newton's own test measures
-     (Predict then stops each linear solve once it meets that test; docs/solvers.md "Tolerances") */
-  if (m->softening && m->bs == 3 && !PDModelDefaultsToGAMG(m)) {
-    KSP       ksp;
+     (Predict then stops each linear solve once it meets that test; docs/solvers.md "Tolerances"). A
+     preconditioner chosen on the command line keeps PETSc's side unless -ksp_pc_side says otherwise. */
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
+  if (m->softening && m->bs == 3 && !PDModelDefaultsToGAMG(m) && !pc_chosen) {
     PC        pc;
     PetscBool gmres, bjacobi;
-    PetscCall(SNESGetKSP(snes, &ksp));
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
     PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBJACOBI, &bjacobi));
     if (gmres && bjacobi) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
   }
   PetscCall(SNESSetFromOptions(snes));
-  /* the preconditioner is rebuilt every third assembly or, for 3D models under GAMG, when the Krylov solver
+  /* the preconditioner is rebuilt at a fixed lag or, for 3D models under GAMG, when the Krylov solver
      finds it stale (src/solve/pc_refresh.c), across Newton iterations, limiter stages and increments,
      unless -snes_lag_preconditioner sets the lag */
   if (!m->linear) {
