@@ -69,12 +69,13 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
      (docs/reinforcement.md) */
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
-  /* GMRES with block ICC(0) on a softening 3D model: preconditioned on the right, so that its residual is
-     the true one, which Eisenstat-Walker's tolerance is defined on and which Newton's own test measures
-     (Predict then stops each linear solve once it meets that test; docs/solvers.md "Tolerances"). A
-     preconditioner chosen on the command line keeps PETSc's side unless -ksp_pc_side says otherwise. */
+  /* GMRES (a softening model's consistent tangent, PDSolverConfigureKSP) with block ICC(0) in 3D:
+     preconditioned on the right, so that its residual is the true one, which Eisenstat-Walker's tolerance
+     is defined on and which Newton's own test measures (the driver then stops each linear solve once it
+     meets that test, Predict; docs/solvers.md "Tolerances"). A preconditioner chosen on the command line
+     keeps PETSc's side unless -ksp_pc_side says otherwise. */
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
-  if (m->softening && m->bs == 3 && !PDModelDefaultsToGAMG(m) && !pc_chosen) {
+  if (m->bs == 3 && !pc_chosen) {
     PC        pc;
     PetscBool gmres, bjacobi;
     PetscCall(KSPGetPC(ksp, &pc));
@@ -114,34 +115,46 @@ static PetscErrorCode Jacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
   PetscFunctionReturn(0);
 }
 
-/* Start of a non-linear increment. The residual at u_n with the new boundary values is the increment's
-   load; equilibrium is demanded relative to it (rtol), as SNES's relative test does from that start.
-   The last accepted increment, scaled to this one, is then added on the free dofs (a secant predictor):
-   on a smooth stretch of the path Newton starts next to the answer, and the absolute tolerance keeps
-   the demanded equilibrium that of the plain start, not a stricter one relative to a smaller residual. */
-static PetscErrorCode Predict(PDModel *m, SNES snes, PetscReal atol0, Vec r, Vec u, Vec du_prev, PetscReal ratio) {
-  PetscReal rnorm, atol, rtol, stol;
-  PetscInt  maxit;
+/* No linear solve needs a residual below the one Newton stops at: where the increment is nearly linear,
+   Eisenstat-Walker's tolerance falls far below it in the last iteration, and the Krylov iterations past
+   it bought nothing (docs/benchmarks/solve_profile.md). Under inexact Newton with a true-residual norm
+   (right preconditioning), each linear solve stops at PD_KSP_ATOL_SHARE of Newton's absolute tolerance
+   (Predict); fixed linear tolerances (-snes_ksp_ew false) and a -ksp_atol of the user's are left alone.
+   Decided once, after the solver has read its options. */
+static PetscErrorCode LinearFloorApplies(SNES snes, PetscBool *applies) {
   KSP       ksp;
   PCSide    side;
   PetscBool ew, chosen;
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelResidual(snes, u, r, m));
-  PetscCall(VecNorm(r, NORM_2, &rnorm));
-  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, NULL));
-  PetscCall(SNESSetTolerances(snes, PetscMax(atol0, rtol * rnorm), rtol, stol, maxit, -1));
-  /* No linear solve needs a residual below the one Newton stops at: where the increment is nearly linear,
-     Eisenstat-Walker's tolerance falls far below it in the last iteration, and the Krylov iterations past
-     it bought nothing (docs/benchmarks/solve_profile.md). Under inexact Newton with a true-residual norm
-     (right preconditioning), each linear solve stops at PD_KSP_ATOL_SHARE of Newton's absolute tolerance;
-     fixed linear tolerances (-snes_ksp_ew false) and a -ksp_atol of the user's are left alone. */
   PetscCall(SNESGetKSP(snes, &ksp));
   PetscCall(KSPGetPCSide(ksp, &side));
   PetscCall(SNESKSPGetUseEW(snes, &ew));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-ksp_atol", &chosen));
-  if (side == PC_RIGHT && ew && !chosen)
-    PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, PD_KSP_ATOL_SHARE * PetscMax(atol0, rtol * rnorm), PETSC_DEFAULT, PETSC_DEFAULT));
+  *applies = side == PC_RIGHT && ew && !chosen ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Start of a non-linear increment. The residual at u_n with the new boundary values is the increment's
+   load; equilibrium is demanded relative to it (rtol), as SNES's relative test does from that start.
+   The last accepted increment, scaled to this one, is then added on the free dofs (a secant predictor):
+   on a smooth stretch of the path Newton starts next to the answer, and the absolute tolerance keeps
+   the demanded equilibrium that of the plain start, not a stricter one relative to a smaller residual. */
+static PetscErrorCode Predict(PDModel *m, SNES snes, PetscReal atol0, PetscBool linear_floor, Vec r, Vec u, Vec du_prev, PetscReal ratio) {
+  PetscReal rnorm, atol, rtol, stol;
+  PetscInt  maxit;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelResidual(snes, u, r, m));
+  PetscCall(VecNorm(r, NORM_2, &rnorm));
+  PetscCall(SNESGetTolerances(snes, &atol, &rtol, &stol, &maxit, NULL));
+  atol = PetscMax(atol0, rtol * rnorm);
+  PetscCall(SNESSetTolerances(snes, atol, rtol, stol, maxit, -1));
+  if (linear_floor) {
+    KSP ksp;
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(KSPSetTolerances(ksp, PETSC_DEFAULT, PD_KSP_ATOL_SHARE * atol, PETSC_DEFAULT, PETSC_DEFAULT));
+  }
   if (ratio > 0) {
     PetscCall(VecAXPY(u, ratio, du_prev));
     PetscCall(PDModelApplyBoundaryValues(m, m->lambda, u));
@@ -289,10 +302,11 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   Vec            u, r;
   PDPath         path;
   PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0, peak = 0;
-  PetscInt       step     = 0;
-  PetscBool      takeover = PETSC_FALSE;
-  PDPCRefresh    refresh  = {0};
-  JacobianCtx    jctx     = {m, &refresh};
+  PetscInt       step         = 0;
+  PetscBool      takeover     = PETSC_FALSE;
+  PetscBool      linear_floor = PETSC_FALSE; /* linear solves stop at Newton's tolerance (LinearFloorApplies) */
+  PDPCRefresh    refresh      = {0};
+  JacobianCtx    jctx         = {m, &refresh};
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateMatrix(m, &J));
@@ -306,6 +320,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(SNESSetJacobian(snes, J, P, Jacobian, &jctx));
   PetscCall(ConfigureSolver(m, snes, &refresh));
   PetscCall(SNESGetTolerances(snes, &atol0, NULL, NULL, NULL, NULL));
+  PetscCall(LinearFloorApplies(snes, &linear_floor));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   dl = PetscMin(dl, sc->dlambda_max);
@@ -320,7 +335,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(VecCopy(path.u_n, u));
     PetscCall(PDModelApplyBoundaryValues(m, lam, u));
     PetscCall(PetscTime(&t0));
-    if (!m->linear) PetscCall(Predict(m, snes, atol0, r, u, path.du, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
+    if (!m->linear)
+      PetscCall(Predict(m, snes, atol0, linear_floor, r, u, path.du, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
     PetscCall(SolveIncrement(m, snes, &refresh, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);
