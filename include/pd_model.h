@@ -56,6 +56,7 @@ typedef struct {
   PetscInt   nzero_dofs;    /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
   PetscInt64 history_bytes; /* per-bond history storage allocated (0 for elastic scenes) */
   PetscInt   jacobian_assemblies;
+  PetscInt64 rows_assembled;         /* node rows this rank has written into stiffness matrices (assembly.c) */
   PetscReal  t_assembly, t_residual; /* seconds spent in the Jacobian and residual */
 } PDModel;
 

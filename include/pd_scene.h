@@ -158,12 +158,13 @@ typedef struct {
   PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
   PDTangent  tangent;
-  PDPCMatrix pc_matrix;            /* matrix the preconditioner is built from: the tangent, or the secant one */
-  PetscInt   limiter_max;          /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
-  PetscInt   limiter_stage_its;    /* Newton iterations between grants while events are pending */
-  PetscInt   limiter_sublevels;    /* limiter levels on the softening branch (1: one, s0 to sc) */
-  PetscBool  limiter_settle_first; /* load/displacement control: equilibrium before the increment's first grant */
-  PetscReal  lambda_max;           /* end of the load path */
+  PDPCMatrix pc_matrix;             /* matrix the preconditioner is built from: the tangent, or the secant one */
+  PetscBool  assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */
+  PetscInt   limiter_max;           /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
+  PetscInt   limiter_stage_its;     /* Newton iterations between grants while events are pending */
+  PetscInt   limiter_sublevels;     /* limiter levels on the softening branch (1: one, s0 to sc) */
+  PetscBool  limiter_settle_first;  /* load/displacement control: equilibrium before the increment's first grant */
+  PetscReal  lambda_max;            /* end of the load path */
   PetscReal  dlambda_min, dlambda_max;
   PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
   PetscInt   nmaterials, nnotches, nregions, nvoids, nbars, nnofail;

@@ -14,6 +14,28 @@ static const char *base = "-pd_domain 0,0,0,0.04,0.025,0.02 -pd_dx 0.005 -pd_E 3
 
 static PetscInt nplastic; /* bar segments on their plastic branch in the last case's state */
 
+/* The model of the base scene with the extra options. */
+static PetscErrorCode ModelCreate(const char *extra, PDScene *sc, PDLattice *lat, PDBonds *bd, PDModel *m) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsClear(NULL));
+  PetscCall(PetscOptionsInsertString(NULL, base));
+  PetscCall(PetscOptionsInsertString(NULL, extra));
+  PetscCall(PDSceneCreateFromOptions(PETSC_COMM_WORLD, sc));
+  PetscCall(PDLatticeCreate(PETSC_COMM_WORLD, sc, lat));
+  PetscCall(PDBondsCreate(sc, lat, PETSC_TRUE, bd));
+  PetscCall(PDModelCreate(sc, lat, bd, m));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ModelDestroy(PDScene *sc, PDLattice *lat, PDBonds *bd, PDModel *m) {
+  PetscFunctionBeginUser;
+  PetscCall(PDModelDestroy(m));
+  PetscCall(PDBondsDestroy(bd));
+  PetscCall(PDLatticeDestroy(lat));
+  PetscCall(PDSceneDestroy(sc));
+  PetscFunctionReturn(0);
+}
+
 /* err: |J v - FD| / |J v|. With -pd_pc_matrix secant the tangent is assembled next to its preconditioning
    matrix; nneg counts the bonds with a negative axial stiffness in each (the tangent's, then the secant's). */
 static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2]) {
@@ -28,13 +50,7 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscReal  *s;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsClear(NULL));
-  PetscCall(PetscOptionsInsertString(NULL, base));
-  PetscCall(PetscOptionsInsertString(NULL, extra));
-  PetscCall(PDSceneCreateFromOptions(PETSC_COMM_WORLD, &sc));
-  PetscCall(PDLatticeCreate(PETSC_COMM_WORLD, &sc, &lat));
-  PetscCall(PDBondsCreate(&sc, &lat, PETSC_TRUE, &bd));
-  PetscCall(PDModelCreate(&sc, &lat, &bd, &m));
+  PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
   PetscCall(PDModelCreateMatrix(&m, &J));
   P = J;
   if (m.kp) PetscCall(PDModelCreateMatrix(&m, &P));
@@ -103,10 +119,59 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscCall(VecDestroy(&Rm));
   if (P != J) PetscCall(MatDestroy(&P));
   PetscCall(MatDestroy(&J));
-  PetscCall(PDModelDestroy(&m));
-  PetscCall(PDBondsDestroy(&bd));
-  PetscCall(PDLatticeDestroy(&lat));
-  PetscCall(PDSceneDestroy(&sc));
+  PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
+  PetscFunctionReturn(0);
+}
+
+/* A later assembly of the same matrix rewrites only the rows of nodes with a bond whose tangent scalar
+   changed (src/model/assembly.c). From a softening state, the displacement of a few nodes is changed and
+   the matrix assembled again: it must equal a matrix assembled whole at the new state, entry for entry,
+   with fewer rows written. Returns |J_later - J_whole|_F / |J_whole|_F and the share of rows written. */
+static PetscErrorCode LaterAssembly(const char *extra, PetscReal *diff, PetscReal *share) {
+  PDScene      sc;
+  PDLattice    lat;
+  PDBonds      bd;
+  PDModel      m;
+  Mat          J, W;
+  Vec          u;
+  PetscRandom  rnd;
+  PetscReal    nw;
+  PetscInt64   before;
+  PetscScalar *uu;
+
+  PetscFunctionBeginUser;
+  PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
+  PetscCall(PDModelCreateMatrix(&m, &J));
+  PetscCall(PDModelCreateMatrix(&m, &W));
+  PetscCall(VecDuplicate(m.f_ref, &u));
+  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, 0, 1));
+  PetscCall(PetscRandomSetSeed(rnd, 11));
+  PetscCall(PetscRandomSeed(rnd));
+  /* stretches up to a few times s0, every bond allowed to soften from no history */
+  PetscCall(VecSetRandom(u, rnd));
+  PetscCall(VecScale(u, 4e-4 * sc.dx));
+  PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
+  for (PetscInt e = 0; m.softening && e < bd.nbonds; e++) m.level[e] = PD_BOND_SOFTENING;
+  PetscCall(PDModelJacobian(NULL, u, J, J, &m));
+  /* a tenth of the nodes, in the middle of the bar (the first ones are held), moves on */
+  PetscCall(VecGetArray(u, &uu));
+  for (PetscInt k = m.bs * (lat.nowned / 2); k < m.bs * (lat.nowned / 2 + lat.nowned / 10); k++) uu[k] *= 1.5;
+  PetscCall(VecRestoreArray(u, &uu));
+  PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
+  before = m.rows_assembled;
+  PetscCall(PDModelJacobian(NULL, u, J, J, &m));
+  *share = (PetscReal)(m.rows_assembled - before) / lat.nowned;
+  PetscCall(PDModelJacobian(NULL, u, W, W, &m));
+  PetscCall(MatNorm(W, NORM_FROBENIUS, &nw));
+  PetscCall(MatAXPY(W, -1, J, SAME_NONZERO_PATTERN));
+  PetscCall(MatNorm(W, NORM_FROBENIUS, diff));
+  *diff /= nw;
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecDestroy(&u));
+  PetscCall(MatDestroy(&W));
+  PetscCall(MatDestroy(&J));
+  PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
   PetscFunctionReturn(0);
 }
 
@@ -155,6 +220,20 @@ int main(int argc, char **argv) {
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "-pd_pc_matrix secant: the tangent still matches FD (< 1e-6)", err, 1e-6);
     Check(nneg[0] > 0 ? PETSC_TRUE : PETSC_FALSE, "the softening state has bonds of negative tangent stiffness", (PetscReal)nneg[0], 1);
     Check(nneg[1] == 0 ? PETSC_TRUE : PETSC_FALSE, "the secant preconditioning matrix has none", (PetscReal)nneg[1], 0);
+  }
+  {
+    /* a later assembly equals a whole one; under small kinematics it writes fewer rows, under finite
+       kinematics (directions follow the displacement) every row */
+    const char *later[] = {"-pd_law nonlinear", "-pd_law bilinear -pd_mat_type sbaij", "-pd_law nonlinear -pd_kinematics finite"};
+    for (size_t k = 0; k < sizeof later / sizeof *later; k++) {
+      PetscReal diff, share;
+      char      what[160];
+      PetscCall(LaterAssembly(later[k], &diff, &share));
+      PetscCall(PetscSNPrintf(what, sizeof what, "later assembly equals a whole one: %s", later[k]));
+      Check(diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, diff, 0);
+      PetscCall(PetscSNPrintf(what, sizeof what, "share of rows written: %s", later[k]));
+      Check((k < 2 ? share > 0 && share < 1 : share == 1) ? PETSC_TRUE : PETSC_FALSE, what, share, 1);
+    }
   }
   {
     const int rc = CheckSummary();

@@ -1,46 +1,9 @@
-/* The bond loop: internal forces and the tangent. The residual, the Jacobian, the limiter and (later)
+/* The bond loop: internal forces and the tangent scalars. The residual, the Jacobian, the limiter and
    the explicit path all use it. Per bond, the law is evaluated once per rank; rows of the stiffness are
-   then gathered from the stored tangent scalars node by node. */
+   then gathered from the stored tangent scalars node by node (assembly.c). */
 #include "pd_model.h"
 #include "kernel.h"
 #include "pd_log.h"
-
-/* Geometry of one bond in the current configuration: direction e, reference and current lengths, the
-   stretch s and the factor q with ds/deta = q e. Small kinematics: s = xi.eta/|xi|^2 along xi/|xi|
-   (the linearised micromodulus of Eq. 4.13). Finite: exact s = (|y| - |xi|)/|xi|, q = 1/|xi|, or the
-   modified s = (|y|^2 - |xi|^2)/(2|xi|^2), q = |y|/|xi|^2 (Miranda et al. Eq. 17). */
-static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *xa, const PetscReal *xb, const PetscScalar *ua,
-                             const PetscScalar *ub, PetscReal e[3], PetscReal *len0, PetscReal *len, PetscReal *s, PetscReal *q) {
-  PetscReal xi[3] = {0, 0, 0}, eta[3] = {0, 0, 0}, L2 = 0;
-  for (PetscInt a = 0; a < dim; a++) {
-    xi[a]  = xb[a] - xa[a];
-    eta[a] = PetscRealPart(ub[a] - ua[a]);
-    L2 += xi[a] * xi[a];
-  }
-  *len0 = PetscSqrtReal(L2);
-  if (sc->kinematics == PD_KINEMATICS_SMALL) {
-    PetscReal dot = 0;
-    for (PetscInt a = 0; a < dim; a++) {
-      dot += xi[a] * eta[a];
-      e[a] = xi[a] / *len0;
-    }
-    *s   = dot / L2;
-    *len = *len0;
-    *q   = 1 / *len0;
-  } else {
-    PetscReal y2 = 0;
-    for (PetscInt a = 0; a < dim; a++) y2 += (xi[a] + eta[a]) * (xi[a] + eta[a]);
-    *len = PetscSqrtReal(y2);
-    for (PetscInt a = 0; a < dim; a++) e[a] = (xi[a] + eta[a]) / *len;
-    if (sc->stretch == PD_STRETCH_MODIFIED) {
-      *s = (y2 - L2) / (2 * L2);
-      *q = *len / L2;
-    } else {
-      *s = (*len - *len0) / *len0;
-      *q = 1 / *len0;
-    }
-  }
-}
 
 /* The largest stretch a bond's law sees at stretch s: its history, raised by s, and held just below the
    threshold the limiter has not yet let it pass (the limit from below). */
@@ -245,81 +208,6 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
       y[bs * j + r] += t;
     }
   }
-  PetscFunctionReturn(0);
-}
-
-/* Gathers one stiffness row per owned node from the bond scalars. Constrained dofs are eliminated
-   symmetrically: their rows and columns are zero but for bc_scale on the diagonal. A free direction
-   left without stiffness (every bond of the node broken) gets a small diagonal so that the matrix stays
-   regular; the residual is not changed, so the solution is not either. */
-PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
-                                   PetscInt *nregularised) {
-  const PDBonds   *bd  = m->bonds;
-  const PDLattice *lat = m->lat;
-  const PetscInt   bs = m->bs, bs2 = bs * bs;
-  PetscInt         maxrow = 0, *cols, nreg = 0;
-  PetscScalar     *vals;
-  PetscBool        assembled, aij, rowcopy;
-
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(PD_LOG.assembly, 0, 0, 0, 0));
-  /* Once an AIJ matrix holds its (exact, fixed) pattern, each scalar row is copied in place in column
-     order: MatSetValues would search every column of the row, which made AIJ assembly six times slower
-     than SBAIJ's (the storage GAMG needs). Blocked storage keeps MatSetValuesBlocked. */
-  PetscCall(MatAssembled(J, &assembled));
-  PetscCall(PetscObjectTypeCompareAny((PetscObject)J, &aij, MATSEQAIJ, MATMPIAIJ, ""));
-  rowcopy = assembled && aij;
-  for (PetscInt i = 0; i < lat->nowned; i++) maxrow = PetscMax(maxrow, bd->inc_start[i + 1] - bd->inc_start[i] + 1);
-  PetscCall(PetscMalloc2(maxrow, &cols, maxrow * bs2, &vals));
-  for (PetscInt i = 0; i < lat->nowned; i++) {
-    const PetscInt s = bd->inc_start[i], n = bd->inc_start[i + 1] - s, ncols = n + 1, ld = ncols * bs;
-    PetscInt       diag = n, c = 0;
-    PetscReal      D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Dref[3] = {0, 0, 0};
-    for (PetscInt p = 0; p < n; p++) {
-      const PetscInt e = bd->inc_bond[s + p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
-      PetscReal      dir[3], L0, L, st, q, K[9], a, b;
-      if (diag == n && lat->gid[j] > lat->gid[i]) diag = c++;
-      BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &st, &q);
-      /* without per-bond scalars the tangent is the constant linearised micromodulus */
-      a = ka ? ka[e] : PDBondStiffness(bd, e) / L0;
-      b = kb ? kb[e] : 0;
-      for (PetscInt r = 0; r < bs; r++) {
-        Dref[r] += PDBondStiffness(bd, e) / L0 * dir[r] * dir[r];
-        for (PetscInt qq = 0; qq < bs; qq++) {
-          K[r * bs + qq] = a * dir[r] * dir[qq] + (r == qq ? b : 0);
-          D[r * bs + qq] += K[r * bs + qq];
-        }
-      }
-      cols[c] = lat->gid[j];
-      for (PetscInt r = 0; r < bs; r++)
-        for (PetscInt qq = 0; qq < bs; qq++) {
-          const PetscBool zero       = m->fixed_local[bs * i + r] || m->fixed_local[bs * j + qq];
-          vals[r * ld + c * bs + qq] = zero ? 0 : -K[r * bs + qq];
-        }
-      c++;
-    }
-    if (diag == n) diag = c;
-    cols[diag] = lat->gid[i];
-    for (PetscInt r = 0; r < bs; r++) {
-      if (!m->fixed_local[bs * i + r] && PetscAbsReal(D[r * bs + r]) <= 1e-10 * Dref[r]) {
-        D[r * bs + r] += 1e-8 * m->bc_scale;
-        nreg++;
-      }
-      for (PetscInt qq = 0; qq < bs; qq++) {
-        const PetscBool fr = m->fixed_local[bs * i + r], fq = m->fixed_local[bs * i + qq];
-        vals[r * ld + diag * bs + qq] = (fr || fq) ? (r == qq ? m->bc_scale : 0) : D[r * bs + qq];
-      }
-    }
-    if (rowcopy)
-      for (PetscInt r = 0; r < bs; r++) PetscCall(MatSetValuesRow(J, bs * lat->gid[i] + r, &vals[r * ld]));
-    else
-      PetscCall(MatSetValuesBlocked(J, 1, &lat->gid[i], ncols, cols, vals, INSERT_VALUES));
-  }
-  PetscCall(PetscFree2(cols, vals));
-  PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
-  PetscCall(MPIU_Allreduce(&nreg, nregularised, 1, MPIU_INT, MPI_SUM, lat->comm));
-  PetscCall(PetscLogEventEnd(PD_LOG.assembly, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
 

@@ -2,6 +2,43 @@
 #pragma once
 #include "pd_model.h"
 
+/* Geometry of one bond in the current configuration: direction e, reference and current lengths, the
+   stretch s and the factor q with ds/deta = q e. Small kinematics: s = xi.eta/|xi|^2 along xi/|xi|
+   (the linearised micromodulus of Eq. 4.13). Finite: exact s = (|y| - |xi|)/|xi|, q = 1/|xi|, or the
+   modified s = (|y|^2 - |xi|^2)/(2|xi|^2), q = |y|/|xi|^2 (Miranda et al. Eq. 17). */
+static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *xa, const PetscReal *xb, const PetscScalar *ua,
+                             const PetscScalar *ub, PetscReal e[3], PetscReal *len0, PetscReal *len, PetscReal *s, PetscReal *q) {
+  PetscReal xi[3] = {0, 0, 0}, eta[3] = {0, 0, 0}, L2 = 0;
+  for (PetscInt a = 0; a < dim; a++) {
+    xi[a]  = xb[a] - xa[a];
+    eta[a] = PetscRealPart(ub[a] - ua[a]);
+    L2 += xi[a] * xi[a];
+  }
+  *len0 = PetscSqrtReal(L2);
+  if (sc->kinematics == PD_KINEMATICS_SMALL) {
+    PetscReal dot = 0;
+    for (PetscInt a = 0; a < dim; a++) {
+      dot += xi[a] * eta[a];
+      e[a] = xi[a] / *len0;
+    }
+    *s   = dot / L2;
+    *len = *len0;
+    *q   = 1 / *len0;
+  } else {
+    PetscReal y2 = 0;
+    for (PetscInt a = 0; a < dim; a++) y2 += (xi[a] + eta[a]) * (xi[a] + eta[a]);
+    *len = PetscSqrtReal(y2);
+    for (PetscInt a = 0; a < dim; a++) e[a] = (xi[a] + eta[a]) / *len;
+    if (sc->stretch == PD_STRETCH_MODIFIED) {
+      *s = (y2 - L2) / (2 * L2);
+      *q = *len / L2;
+    } else {
+      *s = (*len - *len0) / *len0;
+      *q = 1 / *len0;
+    }
+  }
+}
+
 PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,

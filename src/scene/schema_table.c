@@ -466,6 +466,12 @@ const PDOptionSpec PDOptionSchema[] = {
      .help =
          "Stiffness storage. AIJ where GAMG preconditions (-pc_type gamg, and the default preconditioner of 2D scenes and of non-linear "
          "3D scenes from 10,000 nodes, docs/solvers.md)"},
+    {.name = "-pd_assembly_changed_rows",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_IMPLICIT,
+     .help = "Later assemblies of a stiffness rewrite only the rows of nodes with a bond whose tangent changed (small kinematics); "
+             "false: every row, every time (docs/solvers.md)"},
     {.name     = "-pd_limiter_max_bonds",
      .type     = PD_OPTION_INT,
      .def_note = "10 per 150,000 bonds, at least 10",
