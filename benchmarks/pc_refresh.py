@@ -1,13 +1,15 @@
 #!/usr/bin/python3
-"""When to rebuild the preconditioner of a 3D model under GAMG: every third assembly (the earlier default),
+"""Levers of the linear solves of 3D models under GAMG. When to rebuild the preconditioner: every third assembly (the earlier default),
 never (built once, from the elastic tangent), or when the Krylov solver finds it stale (the default for
 3D models under GAMG, src/solve/pc_refresh.c); and, with the last, one Chebyshev smoothing step per
-multigrid level instead of two. The Gregoire D = 100 mm half-notched beam, dx = 5 mm (14,000 nodes), to
-CMOD 0.12 mm, past its peak; each configuration run one after the other in one invocation. CPU times are
+multigrid level instead of two, and with every row of the matrix rewritten at each assembly. The Gregoire D = 100 mm half-notched beam, dx = 5 mm (14,000 nodes), to
+CMOD 0.12 mm, past its peak. The same beam under path following with IMPL-EX to CMOD 30 um: the path
+direction's Krylov solve started from the last direction (the default) or from zero, and whole assemblies.
+Each configuration of a beam runs one after the other in one invocation. CPU times are
 the runs' own (wait4); ratios are taken on the default's. Writes docs/benchmarks/pc_refresh.json and
 pc_refresh.md (about 20 minutes on one core).
 
-Usage: benchmarks/pc_refresh.py [--report]
+Usage: benchmarks/pc_refresh.py [d100] [d100_implex] [--report]   (the beams named, all by default)
 """
 import csv
 import json
@@ -20,11 +22,19 @@ from common import EXE, OUT, RESULTS_DIR, ROOT, curve_difference, load_results, 
 JSON = os.path.join(RESULTS_DIR, "pc_refresh.json")
 # beam -> scene, options every configuration gets, what it is
 BEAMS = {"d100": ("gregoire_d100_hn.opts", ["-pd_stop_cmod", "1.2e-4"],
-                  "D = 100 mm half-notched, dx = 5 mm, 14,000 nodes, GAMG, to CMOD 0.12 mm")}
+                  "D = 100 mm half-notched, dx = 5 mm, 14,000 nodes, GAMG, to CMOD 0.12 mm"),
+         "d100_implex": ("gregoire_d100_hn.opts", ["-pd_control", "arclength", "-pd_arclength_implex", "0.03", "-pd_stop_cmod", "3e-5"],
+                         "D = 100 mm half-notched, dx = 5 mm, 14,000 nodes, GAMG, path following with IMPL-EX 0.03 to CMOD 30 um")}
 # label -> options, per beam
 CONFIGS = {"d100": [("rebuilt when stale (default)", []), ("every third assembly", ["-snes_lag_preconditioner", "3"]),
                     ("never rebuilt", ["-snes_lag_preconditioner", "-2"]),
-                    ("rebuilt when stale, one smoothing step", ["-mg_levels_ksp_max_it", "1"])]}
+                    ("rebuilt when stale, one smoothing step", ["-mg_levels_ksp_max_it", "1"]),
+                    # every row of the AIJ matrix rewritten at every assembly (the earlier default; docs/solvers.md "Assembly")
+                    ("rebuilt when stale, whole assembly", ["-pd_assembly_changed_rows", "false"])],
+           # IMPL-EX: two tight Krylov solves per step; the path direction's started from zero instead of from the last
+           # direction (docs/arclength.md), and every row of the matrix rewritten at each assembly
+           "d100_implex": [("default", []), ("direction from zero", ["-pd_arclength_guess", "false"]),
+                           ("whole assembly", ["-pd_assembly_changed_rows", "false"])]}
 EVENTS = ["PCSetUp", "PCApply", "MatMult", "KSPSolve", "PDAssembly"]
 
 
@@ -53,7 +63,7 @@ def run(beam, extra):
 
 def report():
     res = load_results(JSON)
-    lines = ["# When to rebuild the preconditioner", "",
+    lines = ["# Linear solves under GAMG: when to rebuild the preconditioner, and what else they cost", "",
              "Written by `benchmarks/pc_refresh.py` from `pc_refresh.json`. One rank; the configurations of a beam ran one after "
              "the other in one invocation, and the ratios are of CPU time (the run's own, from wait4) over the default's. "
              "Event times are `-log_view`'s for the whole run (s). Peak and RMS curve difference against the default.", ""]
@@ -63,14 +73,14 @@ def report():
             continue
         ref = runs[CONFIGS[beam][0][0]]
         lines += ["## %s" % what, "",
-                  "| configuration | CPU (s) | CPU over default's | Newton | KSP | PCSetUp (s) | PCApply (s) | MatMult (s) | peak (N) | "
-                  "peak vs default | RMS vs default | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| configuration | CPU (s) | CPU over default's | Newton | KSP | PCSetUp (s) | PCApply (s) | MatMult (s) | PDAssembly (s) | "
+                  "peak (N) | peak vs default | RMS vs default | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for label, extra in CONFIGS[beam]:
             r = runs[label]
             e = r["events_s"]
-            lines.append("| %s | %.1f | %.2f | %d | %d | %.1f | %.1f | %.1f | %.1f | %+.3f %% | %.3f %% | %s |" % (
+            lines.append("| %s | %.1f | %.2f | %d | %d | %.1f | %.1f | %.1f | %.1f | %.1f | %+.3f %% | %.3f %% | %s |" % (
                 label, r["cpu_s"], r["cpu_s"] / ref["cpu_s"], r["newton_its"], r["ksp_its"], e.get("PCSetUp", 0), e.get("PCApply", 0),
-                e.get("MatMult", 0), r["peak_N"], 100 * (r["peak_N"] / ref["peak_N"] - 1), 100 * curve_difference(ref, r), r["status"]))
+                e.get("MatMult", 0), e.get("PDAssembly", 0), r["peak_N"], 100 * (r["peak_N"] / ref["peak_N"] - 1), 100 * curve_difference(ref, r), r["status"]))
         lines += ["", "Commands:", ""]
         lines += [("    build/pdimplicit -options_file options/%s %s %s" % (scene, " ".join(common), " ".join(extra))).rstrip()
                   for _, extra in CONFIGS[beam]]

@@ -151,6 +151,7 @@ typedef struct {
   PetscReal  arc_growth;     /* largest arc length over the first one */
   PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
   PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
+  PetscBool  arc_guess;      /* the path direction's Krylov solve starts from the last direction */
   PetscInt   arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
   PetscInt   arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
   PetscReal  arc_implex;     /* > 0: IMPL-EX (damage extrapolated, secant steps), the error per step aimed at; 0: implicit */

@@ -20,6 +20,8 @@ static PetscErrorCode ReadPathFollowing(PetscOptionItems *PetscOptionsObject, MP
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_halved_its", &sc->arc_halved_its, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_hold", &sc->arc_hold, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_rtol", &sc->arc_rtol, NULL));
+  sc->arc_guess = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_arclength_guess", &sc->arc_guess, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_implex", &sc->arc_implex, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_stop_fraction", &sc->stop_fraction, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_unload_at", &sc->unload_at, NULL));

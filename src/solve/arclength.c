@@ -38,7 +38,9 @@ typedef struct {
   Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
   KSP            ksp;
   Vec            u, fint, R, q, duI, v, w, dprev, row;
-  PDAugmented    aug; /* used for linear constraints unless -pd_arclength_solve bordering */
+  Vec            v_n;       /* v at the last accepted step: the guess a restart starts from (-pd_arclength_guess) */
+  PetscInt       totals[2]; /* the run's Newton and Krylov iterations at the last accepted step */
+  PDAugmented    aug;       /* used for linear constraints unless -pd_arclength_solve bordering */
   PetscBool      augmented;
   PetscReal      lam;
   PetscReal      vnorm;     /* |v|, with v */
@@ -118,7 +120,15 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
   PetscCall(VecAXPY(a->q, -1, a->w));
   PetscCall(VecScale(a->q, -1));
   if (!direction) PetscFunctionReturn(0);
+  /* the direction changes little from one solve to the next (damage changes the tangent in a band): the
+     last one starts the Krylov solve, whose tolerance stays relative to |q| (KSPConvergedDefaultSetUIRNorm
+     in Run), so that the guess saves iterations and not accuracy (-pd_arclength_guess) */
+  if (!a->direct && m->scene->arc_guess) {
+    PetscCall(VecAXPY(a->v, -1, m->u_ref));
+    PetscCall(KSPSetInitialGuessNonzero(a->ksp, PETSC_TRUE));
+  }
   PetscCall(Solve(a, a->q, a->v));
+  PetscCall(KSPSetInitialGuessNonzero(a->ksp, PETSC_FALSE));
   PetscCall(KSPGetIterationNumber(a->ksp, &n));
   a->lits += n;
   PetscCall(VecAXPY(a->v, 1, m->u_ref));
@@ -475,11 +485,14 @@ static const char *const state_names[] = {"step",           "lambda",           
                                           "peak_sign",      "spherical_psi2",   "have_previous",   "turn",
                                           "reversal_phase", "reversal_gauge",   "arc_length_hold", "implex_previous_length"};
 _Static_assert(sizeof state_names / sizeof state_names[0] == NSTATE, "one name per checkpointed scalar");
-static const char *const state_vec_names[] = {"displacement", "internal_force", "last_step"};
+/* the direction of the last accepted step starts the next step's Krylov iterations (-pd_arclength_guess):
+   kept, so that a restart starts from the same guess */
+static const char *const state_vec_names[] = {"displacement", "internal_force", "last_step", "direction"};
+#define NSTATE_VECS 4
 
 PetscErrorCode PDArcLengthValidateRestart(const PDModel *m, const char *path) {
   PetscFunctionBeginUser;
-  PetscCall(PDCheckpointValidate(m, path, 3, state_vec_names, NSTATE, state_names));
+  PetscCall(PDCheckpointValidate(m, path, NSTATE_VECS, state_vec_names, NSTATE, state_names));
   PetscFunctionReturn(0);
 }
 
@@ -523,21 +536,38 @@ static void UnpackState(Arc *a, PDPath *p) {
   a->len_prev        = v[15];
 }
 
+/* What a checkpoint keeps of the last accepted step besides the path: the driver's scalars, the direction
+   and the run's totals. */
+static PetscErrorCode KeepAccepted(Arc *a, const PDPath *p, const PDRecord *rec) {
+  PetscFunctionBeginUser;
+  PackState(a, p);
+  PetscCall(VecCopy(a->v, a->v_n));
+  a->totals[0] = rec->newton_its;
+  a->totals[1] = rec->ksp_its;
+  PetscFunctionReturn(0);
+}
+
+/* The totals kept are those of the last accepted step: a step interrupted part-way is made again, whole, by
+   the run that goes on from the checkpoint. */
 static PetscErrorCode WriteCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
-  const Vec vec[] = {p->u_n, p->f_n, a->dprev};
+  const Vec vec[NSTATE_VECS] = {p->u_n, p->f_n, a->dprev, a->v_n};
+  PDRecord  at               = *rec;
 
   PetscFunctionBeginUser;
-  PetscCall(PDCheckpointWrite(a->m, rec, 3, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
+  at.newton_its = a->totals[0];
+  at.ksp_its    = a->totals[1];
+  PetscCall(PDCheckpointWrite(a->m, &at, NSTATE_VECS, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode ReadCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
-  PDModel *m     = a->m;
-  Vec      vec[] = {p->u_n, p->f_n, a->dprev};
+  PDModel *m                = a->m;
+  Vec      vec[NSTATE_VECS] = {p->u_n, p->f_n, a->dprev, a->v_n};
 
   PetscFunctionBeginUser;
-  PetscCall(PDCheckpointRead(m, rec, m->scene->restart, 3, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
+  PetscCall(PDCheckpointRead(m, rec, m->scene->restart, NSTATE_VECS, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
   UnpackState(a, p);
+  PetscCall(VecCopy(a->v_n, a->v));
   m->lambda = p->lambda_n;
   PetscCall(PDPCRefreshRequest(&a->refresh)); /* a fresh preconditioner, as the run that wrote it had at its start */
   PetscCall(PetscInfo(NULL, "path following goes on from %s at step %" PetscInt_FMT ", load factor %g\n", m->scene->restart, p->step,
@@ -625,7 +655,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
   {
-    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row};
+    Vec *work[] = {&a.fint, &a.R, &a.q, &a.duI, &a.v, &a.v_n, &a.w, &a.dprev, &a.row};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDuplicate(m->f_ref, work[k]));
   }
   PetscCall(PDPathCreate(m, &path));
@@ -636,6 +666,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   PetscCall(PDSolverConfigureKSP(m, a.ksp));
   PetscCall(KSPSetTolerances(a.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
   PetscCall(KSPSetFromOptions(a.ksp));
+  PetscCall(KSPConvergedDefaultSetUIRNorm(a.ksp));
   PetscCall(KSPGetPC(a.ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)a.ksp, KSPPREONLY, &a.direct));
   PetscCall(PDPCRefreshAttach(m, a.ksp, NULL, &a.refresh));
@@ -648,7 +679,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   else if (from)
     PetscCall(TakeOver(&a, &path, from, dlam_last, rec));
   if (a.kx_n) PetscCall(StartImplex(&a, sc->arc_implex, sc->restart[0] ? PETSC_TRUE : PETSC_FALSE));
-  PackState(&a, &path);
+  PetscCall(KeepAccepted(&a, &path, rec));
   rec->converged = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   while (path.step < maxsteps) {
@@ -762,7 +793,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
       a.peak_sign = row.load < 0 ? -1 : 1;
     }
     if (sc->unload_at > 0 && a.type != ARC_LOAD) PetscCall(LoadReversal(&a, rec, &row, a.peak, a.peak_sign, len, a.dl0, &a.dl));
-    PackState(&a, &path);
+    PetscCall(KeepAccepted(&a, &path, rec));
     /* no separation while a load reversal unloads and reloads */
     PetscCall(PDPathStopCriteria(sc, rec, &row, a.peak, a.rev.phase != 1 && a.rev.phase != 2 ? PETSC_TRUE : PETSC_FALSE, &stop));
     if (!stop && path.lambda_n >= sc->lambda_max * (1 - 1e-12)) stop = PETSC_TRUE;
@@ -797,7 +828,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   if (a.P != a.J) PetscCall(MatDestroy(&a.P));
   PetscCall(MatDestroy(&a.J));
   {
-    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.w, &a.dprev, &a.row, &u_prev};
+    Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.v_n, &a.w, &a.dprev, &a.row, &u_prev};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));
   }
   PetscCall(PDPathDestroy(&path));
