@@ -10,8 +10,9 @@
    assembly rewrites the rows of the nodes one of whose bonds changed, and leaves the others as they are
    (docs/solvers.md "Assembly"). */
 typedef struct {
-  PetscReal     *ka;  /* [nbonds] */
-  unsigned char *reg; /* [nowned] dofs of the row given the regularising diagonal */
+  PetscReal     *ka;     /* [nbonds] */
+  unsigned char *reg;    /* [nowned] dofs of the row given the regularising diagonal */
+  PetscInt       maxrow; /* blocks in the longest row */
 } PDAssembled;
 
 static PetscErrorCode AssembledDestroy(void *ctx) {
@@ -36,6 +37,8 @@ static PetscErrorCode AssembledGet(PDModel *m, Mat J, PDAssembled **rec, PetscBo
   }
   PetscCall(PetscNew(rec));
   PetscCall(PetscMalloc2(PetscMax(1, m->bonds->nbonds), &(*rec)->ka, PetscMax(1, m->lat->nowned), &(*rec)->reg));
+  for (PetscInt i = 0; i < m->lat->nowned; i++)
+    (*rec)->maxrow = PetscMax((*rec)->maxrow, m->bonds->inc_start[i + 1] - m->bonds->inc_start[i] + 1);
   PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)J), &c));
   PetscCall(PetscContainerSetPointer(c, *rec));
   PetscCall(PetscContainerSetUserDestroy(c, AssembledDestroy));
@@ -103,7 +106,7 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs = m->bs, bs2 = bs * bs;
-  PetscInt         maxrow = 0, *cols, nreg = 0, nrows = 0;
+  PetscInt        *cols, nreg = 0, nrows = 0;
   PetscScalar     *vals;
   PetscBool        assembled, aij, rowcopy, fresh = PETSC_TRUE, every;
   PDAssembled     *rec;
@@ -128,8 +131,7 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
     if (bd->a[e] < lat->nowned) due[bd->a[e]] = PETSC_TRUE;
     if (bd->b[e] < lat->nowned) due[bd->b[e]] = PETSC_TRUE;
   }
-  for (PetscInt i = 0; i < lat->nowned; i++) maxrow = PetscMax(maxrow, bd->inc_start[i + 1] - bd->inc_start[i] + 1);
-  PetscCall(PetscMalloc2(maxrow, &cols, maxrow * bs2, &vals));
+  PetscCall(PetscMalloc2(rec->maxrow, &cols, rec->maxrow * bs2, &vals));
   for (PetscInt i = 0; i < lat->nowned; i++) {
     const PetscInt ncols = bd->inc_start[i + 1] - bd->inc_start[i] + 1;
     if (due[i]) {

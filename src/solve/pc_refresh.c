@@ -38,10 +38,10 @@ PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
   PetscCall(KSPGetConvergedReason(ksp, &reason));
   PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
   PetscCall(KSPGetInitialGuessNonzero(ksp, &guess));
-  per_decade = its / PetscMax(1.0, -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON)));
   /* a solve started from a guess reduced its residual by fewer decades than rtol says: it measures
      nothing, unless it failed */
   if (guess && reason >= 0) PetscFunctionReturn(0);
+  per_decade = its / PetscMax(1.0, -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON)));
   if (r->measure) { /* the first solve with a fresh preconditioner */
     r->fresh   = per_decade;
     r->measure = PETSC_FALSE;
