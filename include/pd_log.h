@@ -7,6 +7,7 @@ typedef struct {
   PetscLogEvent force;    /* bond loop: internal forces */
   PetscLogEvent tangent;  /* bond loop: tangent scalars */
   PetscLogEvent assembly; /* stiffness rows gathered into the matrix */
+  PetscLogEvent product;  /* tangent products from the bond scalars */
   PetscLogEvent limiter;  /* damage limiter: candidates ranked, events granted */
   PetscLogEvent history;  /* bond histories committed at an accepted step */
   PetscLogEvent energy;   /* bond loop: stored and dissipated energy */

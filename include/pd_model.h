@@ -80,6 +80,9 @@ void PDModelResetThresholds(PDModel *);
 #define PD_MAX_EFFECTS 10
 PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
+PetscErrorCode PDModelCreateOperators(PDModel *, Mat *J, Mat *P);
+PetscErrorCode PDModelDestroyOperators(Mat *J, Mat *P);
+PetscBool      PDModelTangentFromBonds(const PDModel *);
 PetscBool      PDModelDefaultsToGAMG(const PDModel *);
 PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);

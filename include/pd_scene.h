@@ -23,6 +23,7 @@ typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE, PD_CONTROL_ARCLENGTH, 
 typedef enum { PD_ARC_SPHERICAL, PD_ARC_CYLINDRICAL, PD_ARC_CMOD, PD_ARC_DISSIPATION } PDArcType;
 typedef enum { PD_TANGENT_CONSISTENT, PD_TANGENT_SECANT } PDTangent;
 typedef enum { PD_PC_MATRIX_TANGENT, PD_PC_MATRIX_SECANT } PDPCMatrix;
+typedef enum { PD_TANGENT_PRODUCT_BONDS, PD_TANGENT_PRODUCT_MATRIX } PDTangentProduct;
 typedef enum { PD_SHAPE_BOX, PD_SHAPE_CYLINDER } PDShape;
 typedef enum { PD_REGION_SUPPORT, PD_REGION_DISPLACEMENT, PD_REGION_FORCE, PD_REGION_MONITOR } PDRegionKind;
 typedef enum { PD_FAILURE_DAMAGE, PD_FAILURE_VELOCITY, PD_FAILURE_FORCE } PDFailureCriterion;
@@ -47,6 +48,7 @@ extern const char *const PDControlNames[];
 extern const char *const PDArcTypes[];
 extern const char *const PDTangentNames[];
 extern const char *const PDPCMatrixNames[];
+extern const char *const PDTangentProductNames[];
 extern const char *const PDShapes[];
 extern const char *const PDRegionKinds[];
 extern const char *const PDFailureCriteria[];
@@ -145,50 +147,51 @@ typedef struct {
   PetscReal     strength_scatter; /* per-bond tensile strength f_t (1 + r xi), xi uniform in [-1, 1] by bond id; 0: none */
   PDControl     control;
   /* path following (-pd_control arclength|auto) */
-  PDArcType  arc_type;       /* constraint */
-  PetscBool  arc_augmented;  /* linear constraints: one augmented solve per Newton iteration, not two (bordering) */
-  PetscReal  arc_initial;    /* first arc length (units of the constraint); 0: from the first load step */
-  PetscReal  arc_growth;     /* largest arc length over the first one */
-  PetscInt   arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
-  PetscReal  arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
-  PetscBool  arc_guess;      /* the path direction's Krylov solve starts from the last direction */
-  PetscInt   arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
-  PetscInt   arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
-  PetscReal  arc_implex;     /* > 0: IMPL-EX (damage extrapolated, secant steps), the error per step aimed at; 0: implicit */
-  PetscReal  stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
-  PetscReal  unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
-  PetscReal  reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
-  PDTangent  tangent;
-  PDPCMatrix pc_matrix;             /* matrix the preconditioner is built from: the tangent, or the secant one */
-  PetscBool  assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */
-  PetscInt   limiter_max;           /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
-  PetscInt   limiter_stage_its;     /* Newton iterations between grants while events are pending */
-  PetscInt   limiter_sublevels;     /* limiter levels on the softening branch (1: one, s0 to sc) */
-  PetscBool  limiter_settle_first;  /* load/displacement control: equilibrium before the increment's first grant */
-  PetscReal  lambda_max;            /* end of the load path */
-  PetscReal  dlambda_min, dlambda_max;
-  PetscReal  stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
-  PetscInt   nmaterials, nnotches, nregions, nvoids, nbars, nnofail;
-  PetscInt   nplates;                    /* bearing plates (-pd_plateK_*), kept as elastic materials after the nmaterials given */
-  PDMaterial material[PD_MAX_MATERIALS]; /* the materials given, then the plates' */
-  PDNotch    notch[PD_MAX_NOTCHES];
-  PDRegion   region[PD_MAX_REGIONS];
-  PDVoid     voids[PD_MAX_VOIDS];
-  PDBar      bar[PD_MAX_BARS];
-  PDVoid     nofail[PD_MAX_NOFAIL]; /* no-fail zones: the bonds of their nodes stay elastic (Ness) */
-  PetscInt   load_region;           /* region whose force or reaction is the curve's load */
-  PetscInt   disp_region;           /* region whose mean displacement is the curve's displacement */
-  PetscBool  has_cmod;
-  PetscReal  cmod[6];          /* two gauge points */
-  PetscInt   steps;            /* load steps */
-  PetscBool  predictor;        /* load/displacement control: secant predictor from the last increment */
-  PetscBool  control_fallback; /* load/displacement control: path following where it finds no equilibrium */
-  PetscInt   fields_every;
-  PetscInt   checkpoint_every;            /* path following: write checkpoint.h5 every N accepted steps; 0: only when stopped early */
-  char       restart[PETSC_MAX_PATH_LEN]; /* path following: checkpoint to go on from, or empty */
-  PetscBool  progress;
-  PetscBool  dry_run;     /* build the scene and report it, do not solve */
-  char       mat_type[8]; /* stiffness storage (-pd_mat_type), or empty for the default */
+  PDArcType        arc_type;       /* constraint */
+  PetscBool        arc_augmented;  /* linear constraints: one augmented solve per Newton iteration, not two (bordering) */
+  PetscReal        arc_initial;    /* first arc length (units of the constraint); 0: from the first load step */
+  PetscReal        arc_growth;     /* largest arc length over the first one */
+  PetscInt         arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
+  PetscReal        arc_rtol;       /* equilibrium: |residual| below this times |f_int| */
+  PetscBool        arc_guess;      /* the path direction's Krylov solve starts from the last direction */
+  PetscInt         arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
+  PetscInt         arc_hold;       /* accepted steps after a cut during which the arc length does not grow */
+  PetscReal        arc_implex;     /* > 0: IMPL-EX (damage extrapolated, secant steps), the error per step aimed at; 0: implicit */
+  PetscReal        stop_fraction;  /* after the peak, stop with status separated below this fraction of it; 0: off */
+  PetscReal        unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
+  PetscReal        reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
+  PDTangent        tangent;
+  PDPCMatrix       pc_matrix;             /* matrix the preconditioner is built from: the tangent, or the secant one */
+  PetscBool        assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */
+  PDTangentProduct tangent_product;       /* Newton's operator: products from the bond scalars, or the assembled matrix */
+  PetscInt         limiter_max;           /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
+  PetscInt         limiter_stage_its;     /* Newton iterations between grants while events are pending */
+  PetscInt         limiter_sublevels;     /* limiter levels on the softening branch (1: one, s0 to sc) */
+  PetscBool        limiter_settle_first;  /* load/displacement control: equilibrium before the increment's first grant */
+  PetscReal        lambda_max;            /* end of the load path */
+  PetscReal        dlambda_min, dlambda_max;
+  PetscReal        stop_cmod; /* stop once the CMOD gauge opens this much (m); 0: off */
+  PetscInt         nmaterials, nnotches, nregions, nvoids, nbars, nnofail;
+  PetscInt         nplates;                    /* bearing plates (-pd_plateK_*), kept as elastic materials after the nmaterials given */
+  PDMaterial       material[PD_MAX_MATERIALS]; /* the materials given, then the plates' */
+  PDNotch          notch[PD_MAX_NOTCHES];
+  PDRegion         region[PD_MAX_REGIONS];
+  PDVoid           voids[PD_MAX_VOIDS];
+  PDBar            bar[PD_MAX_BARS];
+  PDVoid           nofail[PD_MAX_NOFAIL]; /* no-fail zones: the bonds of their nodes stay elastic (Ness) */
+  PetscInt         load_region;           /* region whose force or reaction is the curve's load */
+  PetscInt         disp_region;           /* region whose mean displacement is the curve's displacement */
+  PetscBool        has_cmod;
+  PetscReal        cmod[6];          /* two gauge points */
+  PetscInt         steps;            /* load steps */
+  PetscBool        predictor;        /* load/displacement control: secant predictor from the last increment */
+  PetscBool        control_fallback; /* load/displacement control: path following where it finds no equilibrium */
+  PetscInt         fields_every;
+  PetscInt         checkpoint_every;            /* path following: write checkpoint.h5 every N accepted steps; 0: only when stopped early */
+  char             restart[PETSC_MAX_PATH_LEN]; /* path following: checkpoint to go on from, or empty */
+  PetscBool        progress;
+  PetscBool        dry_run;     /* build the scene and report it, do not solve */
+  char             mat_type[8]; /* stiffness storage (-pd_mat_type), or empty for the default */
   /* explicit path (-pd_mode explicit) */
   PetscBool explicit_mode;
   PetscReal ramp_time;    /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */

@@ -51,9 +51,7 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
 
   PetscFunctionBeginUser;
   PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
-  PetscCall(PDModelCreateMatrix(&m, &J));
-  P = J;
-  if (m.kp) PetscCall(PDModelCreateMatrix(&m, &P));
+  PetscCall(PDModelCreateOperators(&m, &J, &P)); /* under small kinematics J is the product from the bond scalars */
   PetscCall(VecDuplicate(m.f_ref, &u));
   PetscCall(VecDuplicate(u, &v));
   PetscCall(VecDuplicate(u, &w));
@@ -117,8 +115,71 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscCall(VecDestroy(&Jv));
   PetscCall(VecDestroy(&Rp));
   PetscCall(VecDestroy(&Rm));
-  if (P != J) PetscCall(MatDestroy(&P));
-  PetscCall(MatDestroy(&J));
+  PetscCall(PDModelDestroyOperators(&J, &P));
+  PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
+  PetscFunctionReturn(0);
+}
+
+/* The tangent's product from the bond scalars (src/model/tangent_product.c) against the product of the
+   assembled matrix it stands for, in a softening state where every bond of one node is broken (its dofs
+   get the regularising diagonal) and with the held face's dofs eliminated. Returns |J x - P x| / |P x|,
+   whether J is the matrix-free product, and the regularised dofs. */
+static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscInt *nreg) {
+  PDScene     sc;
+  PDLattice   lat;
+  PDBonds     bd;
+  PDModel     m;
+  Mat         J, P;
+  Vec         u, x, Jx, Px;
+  PetscRandom rnd;
+  PetscReal   npx;
+
+  PetscFunctionBeginUser;
+  PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
+  PetscCall(PDModelCreateOperators(&m, &J, &P));
+  PetscCall(PetscObjectTypeCompare((PetscObject)J, MATSHELL, shell));
+  PetscCall(VecDuplicate(m.f_ref, &u));
+  PetscCall(VecDuplicate(u, &x));
+  PetscCall(VecDuplicate(u, &Jx));
+  PetscCall(VecDuplicate(u, &Px));
+  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1, 1));
+  PetscCall(PetscRandomSetSeed(rnd, 5));
+  PetscCall(PetscRandomSeed(rnd));
+  /* a dilation about the middle node, which stretches each of its bonds (a compressed bond keeps its
+     stiffness), and a random part; x random on constrained dofs too (P keeps only their diagonal) */
+  PetscCall(VecSetRandom(u, rnd));
+  PetscCall(VecScale(u, 1e-4 * sc.dx));
+  PetscCall(VecSetRandom(x, rnd));
+  {
+    PetscScalar   *uu;
+    const PetscInt c = lat.nowned / 2;
+    PetscCall(VecGetArray(u, &uu));
+    for (PetscInt i = 0; i < lat.nowned; i++)
+      for (PetscInt r = 0; r < m.bs; r++) uu[m.bs * i + r] += 4e-4 * (lat.x[3 * i + r] - lat.x[3 * c + r]);
+    PetscCall(VecRestoreArray(u, &uu));
+    /* every bond of the middle node broken (a history far past every threshold), the others softening */
+    for (PetscInt e = 0; e < bd.nbonds; e++) {
+      const PetscBool lone = bd.a[e] == c || bd.b[e] == c ? PETSC_TRUE : PETSC_FALSE;
+      m.kappa[e]           = lone ? 1 : 0;
+      m.level[e]           = lone ? PD_BOND_LEVEL_OPEN : PD_BOND_SOFTENING;
+    }
+  }
+  PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
+  PetscCall(PDModelJacobian(NULL, u, J, P, &m));
+  *nreg = m.nregularised;
+  PetscCall(MatMult(J, x, Jx));
+  PetscCall(MatMult(P, x, Px));
+  PetscCall(VecNorm(Px, NORM_2, &npx));
+  PetscCall(VecAXPY(Jx, -1, Px));
+  PetscCall(VecNorm(Jx, NORM_2, diff));
+  *diff /= npx;
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&Jx));
+  PetscCall(VecDestroy(&Px));
+  PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
   PetscFunctionReturn(0);
 }
@@ -233,6 +294,27 @@ int main(int argc, char **argv) {
       Check(diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, diff, 0);
       PetscCall(PetscSNPrintf(what, sizeof what, "share of rows written: %s", later[k]));
       Check((k < 2 ? share > 0 && share < 1 : share == 1) ? PETSC_TRUE : PETSC_FALSE, what, share, 1);
+    }
+  }
+  {
+    /* the matrix-free product is the assembled matrix's (to round-off), constrained and regularised dofs
+       included; under finite kinematics and with -pd_tangent_product matrix J is the assembled matrix */
+    const char *prod[] = {"-pd_law nonlinear",
+                          "-pd_law bilinear -pd_mat_type sbaij -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 "
+                          "-pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
+                          "-pd_law nonlinear -pd_kinematics finite", "-pd_law nonlinear -pd_tangent_product matrix"};
+    for (size_t k = 0; k < sizeof prod / sizeof *prod; k++) {
+      PetscReal diff;
+      PetscBool shell;
+      PetscInt  nreg;
+      char      what[200];
+      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &nreg));
+      PetscCall(PetscSNPrintf(what, sizeof what, "product from the bond scalars where it applies: %s", prod[k]));
+      Check(shell == (k < 2) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)shell, k < 2);
+      PetscCall(PetscSNPrintf(what, sizeof what, "|J x - P x| / |P x| < 1e-13: %s", prod[k]));
+      Check(diff < 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, diff, 1e-13);
+      PetscCall(PetscSNPrintf(what, sizeof what, "a node without bonds regularised (3 dofs): %s", prod[k]));
+      Check(nreg == 3 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)nreg, 3);
     }
   }
   {

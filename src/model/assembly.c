@@ -11,7 +11,7 @@
    (docs/solvers.md "Assembly"). */
 typedef struct {
   PetscReal     *ka;     /* [nbonds] */
-  unsigned char *reg;    /* [nowned] dofs of the row given the regularising diagonal */
+  unsigned char *reg;    /* [nowned] dofs of the row given the regularising diagonal, bit r for dof r */
   PetscInt       maxrow; /* blocks in the longest row */
 } PDAssembled;
 
@@ -52,12 +52,13 @@ static PetscErrorCode AssembledGet(PDModel *m, Mat J, PDAssembled **rec, PetscBo
    are eliminated symmetrically: their rows and columns are zero but for bc_scale on the diagonal. A free
    direction left without stiffness (every bond of the node broken) gets a small diagonal so that the
    matrix stays regular; the residual is not changed, so the solution is not either. */
-static PetscInt NodeRow(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscInt i, PetscInt *cols,
-                        PetscScalar *vals) {
+static unsigned char NodeRow(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscInt i, PetscInt *cols,
+                             PetscScalar *vals) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs = m->bs, s = bd->inc_start[i], n = bd->inc_start[i + 1] - s, ld = (n + 1) * bs;
-  PetscInt         diag = n, c = 0, nreg = 0;
+  PetscInt         diag = n, c = 0;
+  unsigned char    reg  = 0;
   PetscReal        D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Dref[3] = {0, 0, 0};
 
   for (PetscInt p = 0; p < n; p++) {
@@ -87,15 +88,15 @@ static PetscInt NodeRow(PDModel *m, const PetscScalar *u, const PetscReal *ka, c
   cols[diag] = lat->gid[i];
   for (PetscInt r = 0; r < bs; r++) {
     if (!m->fixed_local[bs * i + r] && PetscAbsReal(D[r * bs + r]) <= 1e-10 * Dref[r]) {
-      D[r * bs + r] += 1e-8 * m->bc_scale;
-      nreg++;
+      D[r * bs + r] += PD_REGULARISATION * m->bc_scale;
+      reg |= (unsigned char)(1u << r);
     }
     for (PetscInt qq = 0; qq < bs; qq++) {
       const PetscBool fr = m->fixed_local[bs * i + r], fq = m->fixed_local[bs * i + qq];
       vals[r * ld + diag * bs + qq] = (fr || fq) ? (r == qq ? m->bc_scale : 0) : D[r * bs + qq];
     }
   }
-  return nreg;
+  return reg;
 }
 
 /* Rows of J from the bond scalars (ka NULL: the linearised micromodulus; kb NULL: small kinematics). The
@@ -136,13 +137,13 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
     const PetscInt ncols = bd->inc_start[i + 1] - bd->inc_start[i] + 1;
     if (due[i]) {
       nrows++;
-      rec->reg[i] = (unsigned char)NodeRow(m, u, ka, kb, i, cols, vals);
+      rec->reg[i] = NodeRow(m, u, ka, kb, i, cols, vals);
       if (rowcopy)
         for (PetscInt r = 0; r < bs; r++) PetscCall(MatSetValuesRow(J, bs * lat->gid[i] + r, &vals[r * ncols * bs]));
       else
         PetscCall(MatSetValuesBlocked(J, 1, &lat->gid[i], ncols, cols, vals, INSERT_VALUES));
     }
-    nreg += rec->reg[i];
+    for (PetscInt r = 0; r < bs; r++) nreg += (rec->reg[i] >> r) & 1;
   }
   PetscCall(PetscFree2(cols, vals));
   PetscCall(PetscFree(due));
@@ -152,5 +153,22 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
   PetscCall(MPIU_Allreduce(&nreg, nregularised, 1, MPIU_INT, MPI_SUM, lat->comm));
   PetscCall(PetscLogEventEnd(PD_LOG.assembly, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* What P was last assembled with: each bond's ka and each owned row's regularised dofs (NULL before the
+   first assembly). Read by the matrix-free product of the same matrix (tangent_product.c). */
+PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **ka, const unsigned char **reg) {
+  PetscContainer c;
+  PDAssembled   *rec;
+
+  PetscFunctionBeginUser;
+  *ka  = NULL;
+  *reg = NULL;
+  PetscCall(PetscObjectQuery((PetscObject)P, "PDAssembled", (PetscObject *)&c));
+  if (!c) PetscFunctionReturn(0);
+  PetscCall(PetscContainerGetPointer(c, (void **)&rec));
+  *ka  = rec->ka;
+  *reg = rec->reg;
   PetscFunctionReturn(0);
 }

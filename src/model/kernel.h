@@ -39,10 +39,14 @@ static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *x
   }
 }
 
+/* Diagonal added, times bc_scale, to a free dof left without stiffness (every bond of its node broken). */
+#define PD_REGULARISATION 1e-8
+
 PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
+PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **ka, const unsigned char **reg);
 PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
                                         PetscScalar *y);

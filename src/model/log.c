@@ -18,6 +18,7 @@ PetscErrorCode PDLogRegister(void) {
   PetscCall(PetscLogEventRegister("PDBondForce", id, &PD_LOG.force));
   PetscCall(PetscLogEventRegister("PDBondTangent", id, &PD_LOG.tangent));
   PetscCall(PetscLogEventRegister("PDAssembly", id, &PD_LOG.assembly));
+  PetscCall(PetscLogEventRegister("PDTangentProduct", id, &PD_LOG.product));
   PetscCall(PetscLogEventRegister("PDLimiter", id, &PD_LOG.limiter));
   PetscCall(PetscLogEventRegister("PDHistory", id, &PD_LOG.history));
   PetscCall(PetscLogEventRegister("PDEnergy", id, &PD_LOG.energy));

@@ -448,9 +448,10 @@ PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
   if (m->nregularised) PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " dofs without stiffness regularised\n", m->nregularised));
   m->max_regularised = PetscMax(m->max_regularised, m->nregularised);
   if (J != P) {
-    PetscBool mffd;
-    PetscCall(PetscObjectTypeCompare((PetscObject)J, MATMFFD, &mffd));
-    if (mffd) { /* -snes_mf_operator */
+    PetscBool mf;
+    /* -snes_mf_operator, or the product from the bond scalars P was just assembled with */
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)J, &mf, MATMFFD, MATSHELL, ""));
+    if (mf) {
       PetscCall(MatAssemblyBegin(J, MAT_FINAL_ASSEMBLY));
       PetscCall(MatAssemblyEnd(J, MAT_FINAL_ASSEMBLY));
     } else

@@ -7,21 +7,22 @@
 #include <petscviewer.h>
 #include <string.h>
 
-const char *const PDModelKinds[]       = {"3d", "plane_stress", "plane_strain", NULL};
-const char *const PDInfluences[]       = {"constant", "conical", "quartic", NULL};
-const char *const PDKinematicsNames[]  = {"small", "finite", NULL};
-const char *const PDCalibrationNames[] = {"continuum", "stencil", NULL};
-const char *const PDLawNames[]         = {"elastic", "linear", "bilinear", "trilinear", "nonlinear", NULL};
-const char *const PDStretchNames[]     = {"exact", "modified", NULL};
-const char *const PDControlNames[]     = {"displacement", "force", "arclength", "auto", NULL};
-const char *const PDArcTypes[]         = {"spherical", "cylindrical", "cmod", "dissipation", NULL};
-const char *const PDTangentNames[]     = {"consistent", "secant", NULL};
-const char *const PDPCMatrixNames[]    = {"tangent", "secant", NULL};
-const char *const PDShapes[]           = {"box", "cylinder", NULL};
-const char *const PDRegionKinds[]      = {"support", "displacement", "force", "monitor", NULL};
-const char *const PDFailureCriteria[]  = {"damage", "velocity", "force", NULL};
-const char *const PDModes[]            = {"implicit", "explicit", NULL};
-const char *const PDMatTypes[]         = {"sbaij", "baij", "aij", NULL};
+const char *const PDModelKinds[]          = {"3d", "plane_stress", "plane_strain", NULL};
+const char *const PDInfluences[]          = {"constant", "conical", "quartic", NULL};
+const char *const PDKinematicsNames[]     = {"small", "finite", NULL};
+const char *const PDCalibrationNames[]    = {"continuum", "stencil", NULL};
+const char *const PDLawNames[]            = {"elastic", "linear", "bilinear", "trilinear", "nonlinear", NULL};
+const char *const PDStretchNames[]        = {"exact", "modified", NULL};
+const char *const PDControlNames[]        = {"displacement", "force", "arclength", "auto", NULL};
+const char *const PDArcTypes[]            = {"spherical", "cylindrical", "cmod", "dissipation", NULL};
+const char *const PDTangentNames[]        = {"consistent", "secant", NULL};
+const char *const PDPCMatrixNames[]       = {"tangent", "secant", NULL};
+const char *const PDTangentProductNames[] = {"bonds", "matrix", NULL};
+const char *const PDShapes[]              = {"box", "cylinder", NULL};
+const char *const PDRegionKinds[]         = {"support", "displacement", "force", "monitor", NULL};
+const char *const PDFailureCriteria[]     = {"damage", "velocity", "force", NULL};
+const char *const PDModes[]               = {"implicit", "explicit", NULL};
+const char *const PDMatTypes[]            = {"sbaij", "baij", "aij", NULL};
 
 /* The name becomes a directory under output/: it must stay one path component there. */
 static PetscErrorCode CheckName(const char *name) {

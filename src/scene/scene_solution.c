@@ -69,7 +69,10 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
              "Option -pd_dlambda_min: must be at most -pd_dlambda_max (%g), got %g", (double)sc->dlambda_max, (double)sc->dlambda_min);
   sc->assembly_changed_rows = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_assembly_changed_rows", &sc->assembly_changed_rows, NULL));
-  sc->limiter_max = -1; /* by bond count, PDModelLimiterCap */
+  t = PD_TANGENT_PRODUCT_BONDS;
+  PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_tangent_product", &t, NULL));
+  sc->tangent_product = (PDTangentProduct)t;
+  sc->limiter_max     = -1; /* by bond count, PDModelLimiterCap */
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_max_bonds", &sc->limiter_max, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_stage_its", &sc->limiter_stage_its, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_sublevels", &sc->limiter_sublevels, NULL));

@@ -472,6 +472,13 @@ const PDOptionSpec PDOptionSchema[] = {
      .when = PD_WHEN_IMPLICIT,
      .help = "Later assemblies of a stiffness rewrite only the rows of nodes with a bond whose tangent changed (small kinematics); "
              "false: every row, every time (docs/solvers.md)"},
+    {.name   = "-pd_tangent_product",
+     .type   = PD_OPTION_ENUM,
+     .values = PDTangentProductNames,
+     .def    = "bonds",
+     .when   = PD_WHEN_IMPLICIT,
+     .help   = "Newton's operator in the Krylov solves: bonds (products from the bond tangent scalars, small kinematics, "
+               "the assembled matrix kept for the preconditioner) or matrix (products of the assembled matrix; docs/solvers.md)"},
     {.name     = "-pd_limiter_max_bonds",
      .type     = PD_OPTION_INT,
      .def_note = "10 per 150,000 bonds, at least 10",

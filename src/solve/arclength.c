@@ -35,7 +35,7 @@ typedef struct {
 
 typedef struct {
   PDModel       *m;
-  Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
+  Mat            J, P; /* the tangent (its product from the bond scalars, or P itself) and the assembled matrix of its preconditioner */
   KSP            ksp;
   Vec            u, fint, R, q, duI, v, w, dprev, row;
   Vec            v_n;       /* v at the last accepted step: the guess a restart starts from (-pd_arclength_guess) */
@@ -649,9 +649,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   a.type      = ARC_LOAD;
   a.dlam      = sc->lambda_max / sc->steps;
   a.peak_sign = 1;
-  PetscCall(PDModelCreateMatrix(m, &a.J));
-  a.P = a.J;
-  if (m->kp) PetscCall(PDModelCreateMatrix(m, &a.P));
+  PetscCall(PDModelCreateOperators(m, &a.J, &a.P));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
   {
@@ -825,8 +823,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   }
   if (a.augmented) PetscCall(PDAugmentedDestroy(&a.aug));
   PetscCall(KSPDestroy(&a.ksp));
-  if (a.P != a.J) PetscCall(MatDestroy(&a.P));
-  PetscCall(MatDestroy(&a.J));
+  PetscCall(PDModelDestroyOperators(&a.J, &a.P));
   {
     Vec *work[] = {&a.u, &a.fint, &a.R, &a.q, &a.duI, &a.v, &a.v_n, &a.w, &a.dprev, &a.row, &u_prev};
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));

@@ -206,13 +206,8 @@ static PetscErrorCode SwitchToGAMG(PDModel *m, SNES snes, JacobianCtx *jctx, Mat
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ksp), "  block ICC(0) failed on the tangent (%s): going on with GAMG\n",
                         KSPConvergedReasons[kr]));
   m->gamg_after_icc = PETSC_TRUE;
-  if (*P != *J) {
-    PetscCall(MatDestroy(P));
-    PetscCall(PDModelCreateMatrix(m, P));
-  }
-  PetscCall(MatDestroy(J));
-  PetscCall(PDModelCreateMatrix(m, J));
-  if (!m->kp) *P = *J;
+  PetscCall(PDModelDestroyOperators(J, P));
+  PetscCall(PDModelCreateOperators(m, J, P));
   PetscCall(SNESSetJacobian(snes, *J, *P, Jacobian, jctx));
   PetscCall(PCSetType(pc, PCGAMG));
   PetscCall(KSPSetFromOptions(ksp));
@@ -298,7 +293,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   const PDScene *sc   = m->scene;
   MPI_Comm       comm = m->lat->comm;
   SNES           snes;
-  Mat            J, P; /* the tangent, and the matrix of its preconditioner (J itself, or the secant one) */
+  Mat            J, P; /* the tangent (its product from the bond scalars, or P itself) and the assembled matrix of its preconditioner */
   Vec            u, r;
   PDPath         path;
   PetscReal      lambda_n = 0, dl = sc->lambda_max / sc->steps, dl_prev = 0, atol0, peak = 0;
@@ -309,9 +304,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   JacobianCtx    jctx         = {m, &refresh};
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelCreateMatrix(m, &J));
-  P = J;
-  if (m->kp) PetscCall(PDModelCreateMatrix(m, &P));
+  PetscCall(PDModelCreateOperators(m, &J, &P));
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &r));
   PetscCall(PDPathCreate(m, &path));
@@ -401,7 +394,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     SNESType st;
     KSPType  kt;
     PCType   pt;
-    PetscCall(MatGetInfo(J, MAT_GLOBAL_SUM, &info));
+    PetscCall(MatGetInfo(P, MAT_GLOBAL_SUM, &info));
     rec->matrix_nonzeros = info.nz_allocated;
     PetscCall(SNESGetType(snes, &st));
     PetscCall(SNESGetKSP(snes, &ksp));
@@ -411,8 +404,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "%s/%s/%s", st, kt, pt));
   }
   PetscCall(SNESDestroy(&snes));
-  if (P != J) PetscCall(MatDestroy(&P));
-  PetscCall(MatDestroy(&J));
+  PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&r));
   if (takeover) PetscCall(PDArcLengthTakeOver(m, rec, &path, dl_prev));
