@@ -26,11 +26,13 @@ REFERENCE = "limiter cap 1"
 CONFIGS = {"default": [], REFERENCE: ["-pd_limiter_max_bonds", "1"],
            # the defaults before the increment's first Newton iteration became a limiter stage (design note 42),
            # block ICC(0) was rebuilt every sixth assembly instead of every third (src/solve/pc_refresh.c), GMRES
-           # preconditioned on the right with linear solves stopped at Newton's tolerance and later assemblies
-           # rewrote only the rows that changed (docs/solvers.md), and each alone
+           # preconditioned on the right with linear solves stopped at Newton's tolerance, later assemblies
+           # rewrote only the rows that changed and Krylov solves applied the tangent from the bond scalars
+           # (docs/solvers.md), and each alone
            "previous defaults": ["-pd_limiter_settle_first", "true", "-snes_lag_preconditioner", "3", "-ksp_pc_side", "left",
-                                 "-pd_assembly_changed_rows", "false"],
+                                 "-pd_assembly_changed_rows", "false", "-pd_tangent_product", "matrix"],
            "whole assembly": ["-pd_assembly_changed_rows", "false"],
+           "matrix product": ["-pd_tangent_product", "matrix"],
            "settle first": ["-pd_limiter_settle_first", "true"], "preconditioner lag 3": ["-snes_lag_preconditioner", "3"],
            "left preconditioned": ["-ksp_pc_side", "left"],
            # right preconditioning with linear solves stopped at Newton's tolerance is the default with block ICC(0);
@@ -46,7 +48,7 @@ CONFIGS = {"default": [], REFERENCE: ["-pd_limiter_max_bonds", "1"],
            "linear rtol 1e-2": ["-snes_ksp_ew", "false", "-ksp_rtol", "1e-2"], "ICC(1)": ["-sub_pc_factor_levels", "1"],
            "secant preconditioner": ["-pd_pc_matrix", "secant"]}
 # -log_view events reported, in this order: pdimplicit's own (include/pd_log.h) and PETSc's solver events
-EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
+EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDTangentProduct", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
           "PCApply", "MatMult", "MatSolve"]
 
 
