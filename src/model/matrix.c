@@ -5,14 +5,21 @@
 
 /* Algebraic multigrid is the default preconditioner where ICC(0)'s iteration count (which doubles as dx
    halves) outweighs GAMG's set-up: every 2D model (long 2D beams under path following) and non-linear 3D
-   models from PD_GAMG_MIN_NODES nodes, whose tangent is solved hundreds of times (docs/solvers.md: the 3D
-   D = 100 mm half-notched beam at dx = 5 mm, 14,000 nodes, and the D = 50 mm beam at 2.5 mm, 28,000
-   nodes, run about twice as fast; the D = 50 mm beam at 5 mm, 3,500 nodes, 20 % slower). Linear 3D
-   models keep ICC(0) on SBAIJ: one solve, half the memory. */
+   models from PD_GAMG_MIN_NODES nodes, whose tangent is solved hundreds of times. With the tangent's
+   product from the bond scalars and right-preconditioned GMRES, GAMG's V-cycle costs little more than
+   ICC(0)'s triangular solves and needs a third of the iterations: the D = 50 mm half-notched beam takes
+   0.8 of ICC(0)'s CPU time from about 1,000 nodes on, the same at 450 (docs/solvers.md). Below 2,000
+   nodes a run takes seconds either way and keeps ICC(0). Other non-linear models (steel bars in elastic
+   concrete, whose contrast of stiffnesses GAMG's aggregation handles worse) switch at 10,000 nodes as
+   measured before. Linear 3D models keep ICC(0) on SBAIJ: one solve, half the memory. */
 #define PD_GAMG_MIN_NODES 10000
+#define PD_GAMG_MIN_NODES_SOFTENING 2000
 
 PetscBool PDModelDefaultsToGAMG(const PDModel *m) {
-  return (m->bs == 2 || m->gamg_after_icc || (!m->linear && m->lat->nglobal >= PD_GAMG_MIN_NODES)) ? PETSC_TRUE : PETSC_FALSE;
+  return (m->bs == 2 || m->gamg_after_icc ||
+          (!m->linear && m->lat->nglobal >= (m->softening ? PD_GAMG_MIN_NODES_SOFTENING : PD_GAMG_MIN_NODES)))
+             ? PETSC_TRUE
+             : PETSC_FALSE;
 }
 
 PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {

@@ -11,9 +11,9 @@
      gained nothing at 3,500 nodes (fewer factors, more Krylov iterations), and on the 2D beams it let
      left-preconditioned GMRES meet its tolerance on a preconditioned residual that no longer measured
      the true one, so that Newton stalled (docs/solvers.md).
-   - when stale: 3D models under GAMG (the default from PD_GAMG_MIN_NODES nodes, or -pc_type gamg), whose set-up (aggregation, Galerkin
-   products, eigenvalue estimates) costs several V-cycles. A hierarchy built before the damage still fits the tangent, which damage changes
-   in a band of bonds. Each solve is measured in Krylov iterations per decade of residual reduction (its over log10(1/rtol):
+   - when stale: 3D models under GAMG (the default from PD_GAMG_MIN_NODES_SOFTENING nodes, or -pc_type gamg), whose set-up (aggregation,
+   Galerkin products, eigenvalue estimates) costs several V-cycles. A hierarchy built before the damage still fits the tangent, which damage
+   changes in a band of bonds. Each solve is measured in Krylov iterations per decade of residual reduction (its over log10(1/rtol):
    Eisenstat-Walker moves rtol from solve to solve). The first solve after a rebuild sets the reference; a later one that needs more than
      PD_STALE_FACTOR times it plus PD_STALE_SLACK, or that fails, asks for a rebuild at the next
      assembly, and a failed one may be made again at once with a fresh preconditioner.

@@ -69,19 +69,19 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
      (docs/reinforcement.md) */
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
-  /* GMRES (a softening model's consistent tangent, PDSolverConfigureKSP) with block ICC(0) in 3D:
-     preconditioned on the right, so that its residual is the true one, which Eisenstat-Walker's tolerance
-     is defined on and which Newton's own test measures (the driver then stops each linear solve once it
-     meets that test, Predict; docs/solvers.md "Tolerances"). A preconditioner chosen on the command line
-     keeps PETSc's side unless -ksp_pc_side says otherwise. */
+  /* GMRES (a softening model's consistent tangent, PDSolverConfigureKSP) with block ICC(0) or GAMG in
+     3D: preconditioned on the right, so that its residual is the true one, which Eisenstat-Walker's
+     tolerance is defined on and which Newton's own test measures (the driver then stops each linear solve
+     once it meets that test, Predict; docs/solvers.md "Tolerances"). A preconditioner chosen on the
+     command line keeps PETSc's side unless -ksp_pc_side says otherwise. */
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
   if (m->bs == 3 && !pc_chosen) {
     PC        pc;
-    PetscBool gmres, bjacobi;
+    PetscBool gmres, pcok;
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
-    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBJACOBI, &bjacobi));
-    if (gmres && bjacobi) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &pcok, PCBJACOBI, PCGAMG, ""));
+    if (gmres && pcok) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
   }
   PetscCall(SNESSetFromOptions(snes));
   /* the preconditioner is rebuilt at a fixed lag or, for 3D models under GAMG, when the Krylov solver
@@ -184,7 +184,7 @@ static PetscErrorCode SwitchFromCG(SNES snes, PetscBool *retry) {
   PetscFunctionReturn(0);
 }
 
-/* Block ICC(0) can fail on the consistent tangent of a 3D model below PD_GAMG_MIN_NODES once softening
+/* Block ICC(0) can fail on the consistent tangent of a 3D model below PD_GAMG_MIN_NODES_SOFTENING once softening
    bonds make it indefinite near a load line (options/eccentric_notch_3d.opts: GMRES stalls in the first
    increment, where GAMG converges; docs/solvers.md). The run goes on with algebraic multigrid on AIJ
    storage (once; the summary's solver names it), unless the preconditioner or the storage was chosen on
