@@ -27,25 +27,31 @@ CONFIGS = {"default": [], REFERENCE: ["-pd_limiter_max_bonds", "1"],
            # the defaults before the increment's first Newton iteration became a limiter stage (design note 42),
            # block ICC(0) was rebuilt every sixth assembly instead of every third (src/solve/pc_refresh.c), GMRES
            # preconditioned on the right with linear solves stopped at Newton's tolerance, later assemblies
-           # rewrote only the rows that changed and Krylov solves applied the tangent from the bond scalars
-           # (docs/solvers.md), and each alone
+           # rewrote only the rows that changed, Krylov solves applied the tangent from the bond scalars and
+           # GAMG took over from block ICC(0) at 2,000 nodes (docs/solvers.md), and each alone
            "previous defaults": ["-pd_limiter_settle_first", "true", "-snes_lag_preconditioner", "3", "-ksp_pc_side", "left",
-                                 "-pd_assembly_changed_rows", "false", "-pd_tangent_product", "matrix"],
+                                 "-pd_assembly_changed_rows", "false", "-pd_tangent_product", "matrix", "-pc_type", "bjacobi",
+                                 "-pd_mat_type", "sbaij"],
+           "block ICC(0)": ["-pc_type", "bjacobi", "-pd_mat_type", "sbaij", "-ksp_pc_side", "right"],
+           # GAMG asked for where the model is below the 2,000 nodes it is the default from
+           "GAMG": ["-pc_type", "gamg", "-ksp_pc_side", "right"],
            "whole assembly": ["-pd_assembly_changed_rows", "false"],
            "matrix product": ["-pd_tangent_product", "matrix"],
            "settle first": ["-pd_limiter_settle_first", "true"], "preconditioner lag 3": ["-snes_lag_preconditioner", "3"],
            "left preconditioned": ["-ksp_pc_side", "left"],
-           # right preconditioning with linear solves stopped at Newton's tolerance is the default with block ICC(0);
-           # under GAMG (3D models from 10,000 nodes) it has to be asked for
+           # right preconditioning with linear solves stopped at Newton's tolerance is the default: the row
+           # repeats the default's run and shows the machine's noise
            "right preconditioned": ["-ksp_pc_side", "right"],
            # looser equilibrium: fewer iterations here, but not kept (docs/solvers.md)
            "snes_rtol 1e-5": ["-snes_rtol", "1e-5"], "snes_rtol 1e-4": ["-snes_rtol", "1e-4"],
            "no predictor": ["-pd_predictor", "false"],
            "limiter cap 5": ["-pd_limiter_max_bonds", "5"], "limiter cap 40": ["-pd_limiter_max_bonds", "40"],
            "limiter cap 80": ["-pd_limiter_max_bonds", "80"], "no limiter cap": ["-pd_limiter_max_bonds", "0"],
-           # linear solves and preconditioner: a fixed linear tolerance instead of Eisenstat-Walker, ICC with one
-           # level of fill, and ICC of the (positive) secant stiffness instead of the indefinite tangent
-           "linear rtol 1e-2": ["-snes_ksp_ew", "false", "-ksp_rtol", "1e-2"], "ICC(1)": ["-sub_pc_factor_levels", "1"],
+           # linear solves and preconditioner: a fixed linear tolerance instead of Eisenstat-Walker, block ICC with
+           # one level of fill, and the preconditioner built from the (positive) secant stiffness instead of the
+           # indefinite tangent
+           "linear rtol 1e-2": ["-snes_ksp_ew", "false", "-ksp_rtol", "1e-2"],
+           "ICC(1)": ["-pc_type", "bjacobi", "-pd_mat_type", "sbaij", "-ksp_pc_side", "right", "-sub_pc_factor_levels", "1"],
            "secant preconditioner": ["-pd_pc_matrix", "secant"]}
 # -log_view events reported, in this order: pdimplicit's own (include/pd_log.h) and PETSc's solver events
 EVENTS = ["PDBondForce", "PDBondTangent", "PDAssembly", "PDTangentProduct", "PDLimiter", "PDHistory", "PDEnergy", "PDFieldsWrite", "KSPSolve", "PCSetUp",
@@ -88,9 +94,9 @@ def report(res):
              "spacing ran one after the other in one invocation; ratios are taken within it. Event times are PETSc's",
              "`-log_view` for the solve stage (inclusive: KSPSolve contains PCApply and MatMult, PCApply contains MatSolve).",
              "Event times are wall-clock and grow when other work shares the two cores; the CPU time (the run's own, from",
-             "wait4) does not, and the ratios are taken on it. From 10,000 nodes a non-linear 3D model is preconditioned by GAMG,",
-             "whose side and rebuilds the defaults leave as they were: there `settle first` is the previous default (and",
-             "`-snes_lag_preconditioner 3` would replace GAMG's rebuild-when-stale rule, so `previous defaults` is not run).", ""]
+             "wait4) does not, and the ratios are taken on it. From 2,000 nodes a softening 3D model is preconditioned by GAMG",
+             "(right-preconditioned GMRES, the hierarchy rebuilt when stale); `block ICC(0)` is the preconditioner it replaced",
+             "at dx = 5 mm, and `left preconditioned` the side GAMG had before at dx = 2.5 mm.", ""]
     for dx in sorted({r["dx"] for r in res.values()}, reverse=True):
         order = list(CONFIGS)
         runs = sorted((r for r in res.values() if r["dx"] == dx), key=lambda r: order.index(r["label"]) if r["label"] in order else len(order))

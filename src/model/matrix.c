@@ -7,11 +7,11 @@
    halves) outweighs GAMG's set-up: every 2D model (long 2D beams under path following) and non-linear 3D
    models from PD_GAMG_MIN_NODES nodes, whose tangent is solved hundreds of times. With the tangent's
    product from the bond scalars and right-preconditioned GMRES, GAMG's V-cycle costs little more than
-   ICC(0)'s triangular solves and needs a third of the iterations: the D = 50 mm half-notched beam takes
-   0.8 of ICC(0)'s CPU time from about 1,000 nodes on, the same at 450 (docs/solvers.md). Below 2,000
-   nodes a run takes seconds either way and keeps ICC(0). Other non-linear models (steel bars in elastic
-   concrete, whose contrast of stiffnesses GAMG's aggregation handles worse) switch at 10,000 nodes as
-   measured before. Linear 3D models keep ICC(0) on SBAIJ: one solve, half the memory. */
+   ICC(0)'s triangular solves and needs far fewer of them: on the D = 50 mm half-notched beam GAMG wins
+   from about a thousand nodes and draws even below (docs/benchmarks/solve_profile.md, row "block
+   ICC(0)"). Smaller models, whose runs take seconds either way, keep ICC(0). Other non-linear models
+   (steel bars in elastic concrete, whose contrast of stiffnesses GAMG's aggregation handles worse) switch
+   at the earlier size. Linear 3D models keep ICC(0) on SBAIJ: one solve, half the memory. */
 #define PD_GAMG_MIN_NODES 10000
 #define PD_GAMG_MIN_NODES_SOFTENING 2000
 

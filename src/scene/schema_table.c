@@ -465,7 +465,7 @@ const PDOptionSpec PDOptionSchema[] = {
      .when     = PD_WHEN_IMPLICIT,
      .help =
          "Stiffness storage. AIJ where GAMG preconditions (-pc_type gamg, and the default preconditioner of 2D scenes and of non-linear "
-         "3D scenes from 10,000 nodes, docs/solvers.md)"},
+         "3D scenes from 10,000 nodes, softening ones from 2,000, docs/solvers.md)"},
     {.name = "-pd_assembly_changed_rows",
      .type = PD_OPTION_BOOL,
      .def  = "true",
