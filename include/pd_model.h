@@ -82,7 +82,6 @@ PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
 PetscErrorCode PDModelCreateOperators(PDModel *, Mat *J, Mat *P);
 PetscErrorCode PDModelDestroyOperators(Mat *J, Mat *P);
-PetscBool      PDModelTangentFromBonds(const PDModel *);
 PetscBool      PDModelDefaultsToGAMG(const PDModel *);
 PetscErrorCode PDModelInternalForce(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelResidual(SNES, Vec u, Vec R, void *);
@@ -102,6 +101,7 @@ PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, Pe
 PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscInt *nkink);
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
+PetscErrorCode PDModelTangentApplyScalars(PDModel *, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool eliminate, Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);
 PetscErrorCode PDModelElasticApply(PDModel *, Vec x, Vec y);
 PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);

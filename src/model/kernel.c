@@ -184,7 +184,11 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
 }
 
 /* y = K x from the bond scalars, on every dof (no elimination of constrained ones): per bond the block
-   B = ka e e^T + kb I acts on x_j - x_i, +B on node j and -B on node i. */
+   B = ka e e^T + kb I acts on x_j - x_i, +B on node j and -B on node i (ka NULL: the linearised
+   micromodulus; kb NULL: small kinematics). Under small kinematics B = ka xi xi^T / |xi|^2 needs neither
+   u (which may be NULL) nor a square root; bonds come in runs of one first node (the neighbour search's
+   order), whose coordinates, x and row sum stay in registers for the run, so that no bond waits on the
+   store of the one before. This is the Krylov solves' operator (tangent_product.c). */
 PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
                                         PetscScalar *y) {
   const PDBonds   *bd  = m->bonds;
@@ -193,6 +197,37 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
 
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(y, bs * lat->nlocal));
+  if (m->scene->kinematics == PD_KINEMATICS_SMALL) {
+    PetscInt  cur   = -1;
+    PetscReal xc[3] = {0, 0, 0}, vc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+    for (PetscInt e = 0; e < bd->nbonds; e++) {
+      const PetscInt   i = bd->a[e], j = bd->b[e];
+      const PetscReal *xb = &lat->x[3 * j];
+      PetscReal        xi[3], L2 = 0, dot = 0, t;
+      if (i != cur) {
+        for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
+        cur = i;
+        for (PetscInt r = 0; r < bs; r++) {
+          xc[r]  = lat->x[3 * i + r];
+          vc[r]  = PetscRealPart(x[bs * i + r]);
+          acc[r] = 0;
+        }
+      }
+      for (PetscInt r = 0; r < bs; r++) {
+        xi[r] = xb[r] - xc[r];
+        L2 += xi[r] * xi[r];
+        dot += xi[r] * (PetscRealPart(x[bs * j + r]) - vc[r]);
+      }
+      t = (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
+      for (PetscInt r = 0; r < bs; r++) {
+        acc[r] -= t * xi[r];
+        y[bs * j + r] += t * xi[r];
+      }
+    }
+    for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
+    PetscCall(PetscLogFlops((bs == 3 ? 25.0 : 18.0) * bd->nbonds));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
     PetscReal      dir[3], L0, L, s, q, d[3] = {0, 0, 0}, ed = 0;

@@ -506,39 +506,57 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
   PetscFunctionReturn(0);
 }
 
-/* y = K x on every dof from the bond scalars at u (recomputed first when refresh is set), or from the
-   linearised micromodulus at rest when u is NULL. */
-static PetscErrorCode TangentApply(PDModel *m, Vec u, Vec x, Vec y, PetscBool refresh) {
-  const PetscScalar *ul, *xl;
-  PetscScalar       *yl, *yy;
-  Vec                uloc, xloc, yloc;
+/* y = K x on every owned dof from the bond scalars ka, kb at u (PDModelTangentApplyLocal; u NULL: at rest).
+   With eliminate, constrained columns take no part: their entries of x count as zero. The displacement
+   is gathered only under finite kinematics, where a bond's direction follows it. */
+PetscErrorCode PDModelTangentApplyScalars(PDModel *m, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool eliminate, Vec x, Vec y) {
+  const PetscScalar *ul     = NULL;
+  const PetscBool    finite = m->scene->kinematics == PD_KINEMATICS_FINITE ? PETSC_TRUE : PETSC_FALSE;
+  PetscScalar       *xl, *yl, *yy;
+  Vec                uloc = NULL, xloc, yloc;
 
   PetscFunctionBeginUser;
   if (!m->x_local) PetscCall(VecDuplicate(m->u_local, &m->x_local));
   PetscCall(VecCopy(x, m->x_local));
   PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
-  if (u)
+  if (finite && u)
     PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  else {
+  else if (finite) {
     PetscCall(VecGhostGetLocalForm(m->u_local, &uloc));
     PetscCall(VecZeroEntries(uloc));
     PetscCall(VecGetArrayRead(uloc, &ul));
   }
-  if (u && refresh && m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, NULL));
   PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &yloc));
-  PetscCall(VecGetArrayRead(xloc, &xl));
+  PetscCall(VecGetArray(xloc, &xl));
   PetscCall(VecGetArray(yloc, &yl));
-  PetscCall(PDModelTangentApplyLocal(m, ul, u ? m->ka : NULL, u ? m->kb : NULL, xl, yl));
+  for (PetscInt k = 0; eliminate && k < m->bs * m->lat->nlocal; k++)
+    if (m->fixed_local[k]) xl[k] = 0;
+  PetscCall(PDModelTangentApplyLocal(m, ul, ka, kb, xl, yl));
   PetscCall(VecGetArray(y, &yy));
   PetscCall(PetscArraycpy(yy, yl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
   PetscCall(VecRestoreArray(y, &yy));
   PetscCall(VecRestoreArray(yloc, &yl));
-  PetscCall(VecRestoreArrayRead(xloc, &xl));
+  PetscCall(VecRestoreArray(xloc, &xl));
   PetscCall(VecGhostRestoreLocalForm(m->f_local, &yloc));
   PetscCall(VecGhostRestoreLocalForm(m->x_local, &xloc));
-  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  if (uloc) PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  PetscFunctionReturn(0);
+}
+
+/* y = K x on every dof from the bond scalars at u (recomputed first when refresh is set), or from the
+   linearised micromodulus at rest when u is NULL. */
+static PetscErrorCode TangentApply(PDModel *m, Vec u, Vec x, Vec y, PetscBool refresh) {
+  PetscFunctionBeginUser;
+  if (u && refresh && m->ka) {
+    const PetscScalar *ul;
+    Vec                uloc;
+    PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+    PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, NULL));
+    PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  }
+  PetscCall(PDModelTangentApplyScalars(m, u, u ? m->ka : NULL, u ? m->kb : NULL, PETSC_FALSE, x, y));
   PetscFunctionReturn(0);
 }
 
