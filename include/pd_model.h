@@ -18,6 +18,10 @@ typedef struct {
   Vec              x_local;                   /* ghosted work vector for tangent products (created on first use) */
   PetscReal       *ka, *kb;                   /* bond tangent scalars, NULL while constant (kb also under small kinematics) */
   PetscReal       *kp;                        /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
+  PetscBool        ka_with_residual;          /* the residual computes ka and kb too (model.c PDModelResidual) */
+  PetscBool        ka_at_residual;            /* ka and kb are those of the last residual, */
+  Vec              ka_u;                      /* at this displacement */
+  PetscReal        ka_lambda;                 /* and this load factor */
   PDLaw            law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_ELASTIC */
   PDSteel          steel[PD_MAX_BARS];        /* the steel of each bar */
   PetscBool        softening;                 /* some bond law softens or breaks: bonds carry history */
@@ -80,6 +84,7 @@ void PDModelResetThresholds(PDModel *);
 #define PD_MAX_EFFECTS 10
 PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
+PetscErrorCode PDMatUseDiagonalIndex(Mat);
 PetscErrorCode PDModelCreateOperators(PDModel *, Mat *J, Mat *P);
 PetscErrorCode PDModelDestroyOperators(Mat *J, Mat *P);
 PetscBool      PDModelDefaultsToGAMG(const PDModel *);

@@ -123,8 +123,12 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
 /* The tangent's product from the bond scalars (src/model/tangent_product.c) against the product of the
    assembled matrix it stands for, in a softening state where every bond of one node is broken (its dofs
    get the regularising diagonal) and with the held face's dofs eliminated. Returns |J x - P x| / |P x|,
-   whether J is the matrix-free product, and the regularised dofs. */
-static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscInt *nreg) {
+   whether J is the matrix-free product, and the regularised dofs. In the same state: the tangent scalars
+   the residual's bond loop computes against those of their own loop (ka_diff, largest difference), whether
+   the next assembly at that displacement used them (reused), and P's diagonal as MatGetDiagonal reads it
+   (through the index of src/model/aij_diagonal.c on AIJ) against its entries (diag_diff). */
+static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscInt *nreg, PetscReal *ka_diff,
+                                       PetscBool *reused, PetscReal *diag_diff) {
   PDScene     sc;
   PDLattice   lat;
   PDBonds     bd;
@@ -174,6 +178,35 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
   PetscCall(VecAXPY(Jx, -1, Px));
   PetscCall(VecNorm(Jx, NORM_2, diff));
   *diff /= npx;
+  {
+    PetscReal         *ka_own, *kb_own;
+    const PetscScalar *dd;
+    PetscCall(PetscMalloc2(bd.nbonds, &ka_own, bd.nbonds, &kb_own));
+    PetscCall(PetscArraycpy(ka_own, m.ka, bd.nbonds));
+    PetscCall(PetscArrayzero(m.ka, bd.nbonds));
+    if (m.kb) PetscCall(PetscArraycpy(kb_own, m.kb, bd.nbonds));
+    if (m.kb) PetscCall(PetscArrayzero(m.kb, bd.nbonds));
+    m.ka_with_residual = PETSC_TRUE;
+    PetscCall(PDModelResidual(NULL, u, Px, &m));
+    *ka_diff = 0;
+    for (PetscInt e = 0; e < bd.nbonds; e++) *ka_diff = PetscMax(*ka_diff, PetscAbsReal(m.ka[e] - ka_own[e]));
+    for (PetscInt e = 0; m.kb && e < bd.nbonds; e++) *ka_diff = PetscMax(*ka_diff, PetscAbsReal(m.kb[e] - kb_own[e]));
+    PetscCall(PDModelJacobian(NULL, u, J, P, &m));
+    *reused            = m.ka_at_residual;
+    m.ka_with_residual = PETSC_FALSE;
+    PetscCall(VecDestroy(&m.ka_u));
+    PetscCall(PetscFree2(ka_own, kb_own));
+    PetscCall(MatGetDiagonal(P, Px));
+    PetscCall(VecGetArrayRead(Px, &dd));
+    *diag_diff = 0;
+    for (PetscInt k = 0; k < m.bs * lat.nowned; k++) {
+      const PetscInt row = m.bs * lat.gid[k / m.bs] + k % m.bs;
+      PetscScalar    v;
+      PetscCall(MatGetValues(P, 1, &row, 1, &row, &v));
+      *diag_diff = PetscMax(*diag_diff, PetscAbsScalar(dd[k] - v));
+    }
+    PetscCall(VecRestoreArrayRead(Px, &dd));
+  }
   PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&x));
@@ -304,17 +337,24 @@ int main(int argc, char **argv) {
                           "-pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
                           "-pd_law nonlinear -pd_kinematics finite", "-pd_law nonlinear -pd_tangent_product matrix"};
     for (size_t k = 0; k < sizeof prod / sizeof *prod; k++) {
-      PetscReal diff;
-      PetscBool shell;
+      PetscReal diff, ka_diff, diag_diff;
+      PetscBool shell, reused;
       PetscInt  nreg;
       char      what[200];
-      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &nreg));
+      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &nreg, &ka_diff, &reused, &diag_diff));
       PetscCall(PetscSNPrintf(what, sizeof what, "product from the bond scalars where it applies: %s", prod[k]));
       Check(shell == (k < 2) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)shell, k < 2);
       PetscCall(PetscSNPrintf(what, sizeof what, "|J x - P x| / |P x| < 1e-13: %s", prod[k]));
       Check(diff < 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, diff, 1e-13);
       PetscCall(PetscSNPrintf(what, sizeof what, "a node without bonds regularised (3 dofs): %s", prod[k]));
       Check(nreg == 3 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)nreg, 3);
+      /* the same expressions in both loops: equal to the last bit */
+      PetscCall(PetscSNPrintf(what, sizeof what, "tangent scalars from the residual's loop equal their own loop's: %s", prod[k]));
+      Check(ka_diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, ka_diff, 0);
+      PetscCall(PetscSNPrintf(what, sizeof what, "the assembly at the residual's displacement used them: %s", prod[k]));
+      Check(reused, what, (PetscReal)reused, 1);
+      PetscCall(PetscSNPrintf(what, sizeof what, "MatGetDiagonal equals the diagonal entries: %s", prod[k]));
+      Check(diag_diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, diag_diff, 0);
     }
   }
   {

@@ -35,7 +35,13 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
   {
     const PDLawBond *t       = PDModelBondThresholds(m, e, law);
     PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
-    kap                      = EffectiveHistory(m, e, law, t, s, &cap);
+    /* below the damage threshold, on every branch and at every level: elastic, the state of most bonds */
+    if (PetscMax(m->kappa[e], s) < t->s0) {
+      *g  = c * s;
+      *gp = c;
+      return;
+    }
+    kap = EffectiveHistory(m, e, law, t, s, &cap);
     switch (m->branch ? m->branch[e] & PD_BRANCH_MASK : PD_BRANCH_FREE) {
     case PD_BRANCH_SECANT:
       kap     = m->kappa[e];
@@ -91,10 +97,14 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
   }
 }
 
-PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, PetscScalar *f) {
-  const PDBonds   *bd  = m->bonds;
-  const PDLattice *lat = m->lat;
-  const PetscInt   bs  = m->bs;
+/* Internal forces f at u and, where ka is given, the tangent scalars at u as PDModelTangentScalars
+   computes them (without kp): the residual and the tangent of one Newton iteration share the bond
+   loop. */
+PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, PetscScalar *f, PetscReal *ka, PetscReal *kb) {
+  const PDBonds   *bd        = m->bonds;
+  const PDLattice *lat       = m->lat;
+  const PetscInt   bs        = m->bs;
+  const PetscBool  geometric = m->scene->kinematics == PD_KINEMATICS_FINITE;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
@@ -104,6 +114,10 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     PetscReal      dir[3], L0, L, s, q, g, gp;
     BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &s, &q);
     BondForce(m, e, s, &g, &gp);
+    if (ka) {
+      ka[e] = gp * q - (geometric ? g / L : 0);
+      if (kb) kb[e] = geometric ? g / L : 0;
+    }
     if (m->commit_history) PDModelCommitBond(m, e, s);
     for (PetscInt a = 0; a < bs; a++) {
       f[bs * i + a] -= g * dir[a];
@@ -169,6 +183,7 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
   const PetscBool  geometric = m->scene->kinematics == PD_KINEMATICS_FINITE;
 
   PetscFunctionBeginUser;
+  if (ka == m->ka) m->ka_at_residual = PETSC_FALSE;
   PetscCall(PetscLogEventBegin(PD_LOG.tangent, 0, 0, 0, 0));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];

@@ -42,7 +42,7 @@ static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *x
 /* Diagonal added, times bc_scale, to a free dof left without stiffness (every bond of its node broken). */
 #define PD_REGULARISATION 1e-8
 
-PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f);
+PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f, PetscReal *ka, PetscReal *kb);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);

@@ -67,6 +67,7 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
   }
   PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));
   PetscCall(PetscFree4(dnnz, onnz, dnnzu, onnzu));
+  if (m->scene->diagonal_index) PetscCall(PDMatUseDiagonalIndex(*J));
   PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatSetOption(*J, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)*J, &sbaij, MATSBAIJ, MATSEQSBAIJ, MATMPISBAIJ, ""));

@@ -383,7 +383,8 @@ PetscErrorCode PDModelStretchesAt(PDModel *m, Vec u, PetscReal *s) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
+/* Internal forces at u; with tangent, the tangent scalars at u into m->ka and m->kb too. */
+static PetscErrorCode InternalForce(PDModel *m, Vec u, Vec F, PetscBool tangent) {
   const PetscScalar *ul;
   PetscScalar       *fl, *f;
   Vec                uloc, floc;
@@ -392,13 +393,19 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &floc));
   PetscCall(VecGetArray(floc, &fl));
-  PetscCall(PDModelInternalForceLocal(m, ul, fl));
+  PetscCall(PDModelInternalForceLocal(m, ul, fl, tangent ? m->ka : NULL, tangent ? m->kb : NULL));
   PetscCall(VecGetArray(F, &f));
   PetscCall(PetscArraycpy(f, fl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
   PetscCall(VecRestoreArray(F, &f));
   PetscCall(VecRestoreArray(floc, &fl));
   PetscCall(VecGhostRestoreLocalForm(m->f_local, &floc));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
+  PetscFunctionBeginUser;
+  PetscCall(InternalForce(m, u, F, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
 
@@ -412,7 +419,13 @@ PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
   PetscFunctionBeginUser;
   (void)snes;
   PetscCall(PetscTime(&t0));
-  PetscCall(PDModelInternalForce(m, u, R));
+  PetscCall(InternalForce(m, u, R, m->ka_with_residual));
+  if (m->ka_with_residual) {
+    if (!m->ka_u) PetscCall(VecDuplicate(u, &m->ka_u));
+    PetscCall(VecCopy(u, m->ka_u));
+    m->ka_lambda      = m->lambda;
+    m->ka_at_residual = PETSC_TRUE;
+  }
   PetscCall(VecGetArray(R, &r));
   PetscCall(VecGetArrayRead(u, &uu));
   PetscCall(VecGetArrayRead(m->f_ref, &fr));
@@ -442,7 +455,12 @@ PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
   if (m->linear && m->jacobian_assemblies > 0) PetscFunctionReturn(0);
   PetscCall(PetscTime(&t0));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  if (m->ka) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, J != P ? m->kp : NULL));
+  if (m->ka) {
+    PetscBool same = PETSC_FALSE;
+    /* the residual at this u computed them already (unless the secant preconditioning matrix needs kp) */
+    if (m->ka_at_residual && m->lambda == m->ka_lambda && !(J != P && m->kp)) PetscCall(VecEqual(u, m->ka_u, &same));
+    if (!same) PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, J != P ? m->kp : NULL));
+  }
   /* a separate preconditioning matrix is the secant one when asked (-pd_pc_matrix secant), else the tangent */
   PetscCall(PDModelAssembleRows(m, ul, J != P && m->kp ? m->kp : m->ka, m->kb, P, &m->nregularised));
   if (m->nregularised) PetscCall(PetscInfo(NULL, "%" PetscInt_FMT " dofs without stiffness regularised\n", m->nregularised));

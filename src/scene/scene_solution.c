@@ -71,8 +71,12 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_assembly_changed_rows", &sc->assembly_changed_rows, NULL));
   t = PD_TANGENT_PRODUCT_BONDS;
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_tangent_product", &t, NULL));
-  sc->tangent_product = (PDTangentProduct)t;
-  sc->limiter_max     = -1; /* by bond count, PDModelLimiterCap */
+  sc->tangent_product       = (PDTangentProduct)t;
+  sc->tangent_with_residual = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_tangent_with_residual", &sc->tangent_with_residual, NULL));
+  sc->diagonal_index = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_diagonal_index", &sc->diagonal_index, NULL));
+  sc->limiter_max = -1; /* by bond count, PDModelLimiterCap */
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_max_bonds", &sc->limiter_max, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_stage_its", &sc->limiter_stage_its, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_limiter_sublevels", &sc->limiter_sublevels, NULL));

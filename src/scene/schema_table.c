@@ -479,6 +479,18 @@ const PDOptionSpec PDOptionSchema[] = {
      .when   = PD_WHEN_IMPLICIT,
      .help   = "Newton's operator in the Krylov solves: bonds (products from the bond tangent scalars, small kinematics, "
                "the assembled matrix kept for the preconditioner) or matrix (products of the assembled matrix; docs/solvers.md)"},
+    {.name = "-pd_tangent_with_residual",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_IMPLICIT,
+     .help = "Newton's tangent scalars come from the residual's bond loop at the same displacement (load and displacement "
+             "control); false: a bond loop of their own (docs/solvers.md)"},
+    {.name = "-pd_diagonal_index",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_IMPLICIT,
+     .help = "The diagonal of an AIJ stiffness (point Jacobi, GAMG's smoothers) is read through an index of its positions; "
+             "false: PETSc's own, which searches each row (docs/solvers.md)"},
     {.name     = "-pd_limiter_max_bonds",
      .type     = PD_OPTION_INT,
      .def_note = "10 per 150,000 bonds, at least 10",

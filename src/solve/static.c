@@ -7,6 +7,9 @@
 #define PD_MAX_STAGES 1000000
 /* share of Newton's absolute tolerance a linear solve stops at (Predict) */
 #define PD_KSP_ATOL_SHARE 0.5
+/* GMRES restart: no solve of the half-notched beam needs more iterations; PETSc's default restart cut
+   into half of them and doubled the Krylov count (docs/solvers.md) */
+#define PD_GMRES_RESTART 60
 
 /* Krylov method and preconditioner for the stiffness, shared with path following. */
 PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
@@ -19,9 +22,7 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
      bond is indefinite: CG and MINRES (which needs a positive preconditioner) break down on it with
      ICC, GMRES does not. */
   PetscCall(KSPSetType(ksp, (m->softening && m->scene->tangent == PD_TANGENT_CONSISTENT) ? KSPGMRES : KSPCG));
-  /* no solve of the half-notched beam needs more than 60 GMRES iterations; the default restart of 30
-     cut into half of them and doubled the count (22,965 against 13,008 KSP its at dx = 5 mm) */
-  PetscCall(KSPGMRESSetRestart(ksp, 60));
+  PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
   PetscCall(KSPGetPC(ksp, &pc));
   /* 2D models and large 3D ones: algebraic multigrid with the rigid-body near-null space; ICC(0) loses
      its grip on long beams (2D half-notched D = 200 mm under path following: 291,232 KSP iterations and
@@ -72,8 +73,11 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
   /* GMRES (a softening model's consistent tangent, PDSolverConfigureKSP) with block ICC(0) or GAMG in
      3D: preconditioned on the right, so that its residual is the true one, which Eisenstat-Walker's
      tolerance is defined on and which Newton's own test measures (the driver then stops each linear solve
-     once it meets that test, Predict; docs/solvers.md "Tolerances"). A preconditioner chosen on the
-     command line keeps PETSc's side unless -ksp_pc_side says otherwise. */
+     once it meets that test, Predict; docs/solvers.md "Tolerances"). In its flexible form: right-
+     preconditioned GMRES applies the preconditioner once more at the end of each solve to map its
+     Krylov combination back, FGMRES keeps the preconditioned vectors and does not, and the tangent's
+     solves take two or three iterations each (docs/benchmarks/solve_profile.md, row "GMRES"). A
+     preconditioner chosen on the command line keeps PETSc's side unless -ksp_pc_side says otherwise. */
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
   if (m->bs == 3 && !pc_chosen) {
     PC        pc;
@@ -81,7 +85,11 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
     PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &pcok, PCBJACOBI, PCGAMG, ""));
-    if (gmres && pcok) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+    if (gmres && pcok) {
+      PetscCall(KSPSetType(ksp, KSPFGMRES));
+      PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
+      PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+    }
   }
   PetscCall(SNESSetFromOptions(snes));
   /* the preconditioner is rebuilt at a fixed lag or, for 3D models under GAMG, when the Krylov solver
@@ -179,7 +187,7 @@ static PetscErrorCode SwitchFromCG(SNES snes, PetscBool *retry) {
   if (!cg || kr != KSP_DIVERGED_INDEFINITE_PC) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ksp), "  CG met an indefinite preconditioner: going on with GMRES\n"));
   PetscCall(KSPSetType(ksp, KSPGMRES));
-  PetscCall(KSPGMRESSetRestart(ksp, 60));
+  PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
   *retry = PETSC_TRUE;
   PetscFunctionReturn(0);
 }
@@ -314,7 +322,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(ConfigureSolver(m, snes, &refresh));
   PetscCall(SNESGetTolerances(snes, &atol0, NULL, NULL, NULL, NULL));
   PetscCall(LinearFloorApplies(snes, &linear_floor));
-  rec->converged = PETSC_TRUE;
+  /* Newton asks for the tangent where it has just evaluated the residual, and nothing changes the bonds'
+     history or levels inside a SNES solve: one bond loop gives both (PDModelResidual) */
+  m->ka_with_residual = sc->tangent_with_residual && m->ka && !m->kp && !m->commit_history ? PETSC_TRUE : PETSC_FALSE;
+  rec->converged      = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   dl = PetscMin(dl, sc->dlambda_max);
   while (lambda_n < sc->lambda_max * (1 - 1e-12)) {
@@ -403,6 +414,8 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(PCGetType(pc, &pt));
     PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "%s/%s/%s", st, kt, pt));
   }
+  m->ka_with_residual = m->ka_at_residual = PETSC_FALSE;
+  PetscCall(VecDestroy(&m->ka_u));
   PetscCall(SNESDestroy(&snes));
   PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(VecDestroy(&u));
