@@ -109,6 +109,46 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
   PetscCall(PetscArrayzero(f, bs * lat->nlocal));
+  if (!geometric) {
+    /* small kinematics, as the tangent's product (PDModelTangentApplyLocal): the stretch needs no square
+       root, so the law's evaluation does not wait for one; 1/|xi| scales the force at the end, and a
+       node's row is summed in registers over its run of bonds */
+    PetscInt  cur   = -1;
+    PetscReal xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+    for (PetscInt e = 0; e < bd->nbonds; e++) {
+      const PetscInt i = bd->a[e], j = bd->b[e];
+      PetscReal      xi[3], L2 = 0, dot = 0, s, q, g, gp;
+      if (i != cur) {
+        for (PetscInt r = 0; r < bs && cur >= 0; r++) f[bs * cur + r] += acc[r];
+        cur = i;
+        for (PetscInt r = 0; r < bs; r++) {
+          xc[r]  = lat->x[3 * i + r];
+          uc[r]  = PetscRealPart(u[bs * i + r]);
+          acc[r] = 0;
+        }
+      }
+      for (PetscInt r = 0; r < bs; r++) {
+        xi[r] = lat->x[3 * j + r] - xc[r];
+        L2 += xi[r] * xi[r];
+        dot += xi[r] * (PetscRealPart(u[bs * j + r]) - uc[r]);
+      }
+      s = dot / L2;
+      BondForce(m, e, s, &g, &gp);
+      q = 1 / PetscSqrtReal(L2);
+      if (ka) ka[e] = gp * q;
+      if (kb) kb[e] = 0;
+      if (m->commit_history) PDModelCommitBond(m, e, s);
+      g *= q;
+      for (PetscInt r = 0; r < bs; r++) {
+        acc[r] -= g * xi[r];
+        f[bs * j + r] += g * xi[r];
+      }
+    }
+    for (PetscInt r = 0; r < bs && cur >= 0; r++) f[bs * cur + r] += acc[r];
+    PetscCall(PetscLogFlops(30.0 * bd->nbonds));
+    PetscCall(PetscLogEventEnd(PD_LOG.force, 0, 0, 0, 0));
+    PetscFunctionReturn(0);
+  }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
     PetscReal      dir[3], L0, L, s, q, g, gp;
@@ -267,6 +307,20 @@ PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) 
   const PDLattice *lat = m->lat;
 
   PetscFunctionBeginUser;
+  if (m->scene->kinematics == PD_KINEMATICS_SMALL) { /* BondState's stretch, without the length it has no use for */
+    for (PetscInt e = 0; e < bd->nbonds; e++) {
+      const PetscReal   *xa = &lat->x[3 * bd->a[e]], *xb = &lat->x[3 * bd->b[e]];
+      const PetscScalar *ua = &u[m->bs * bd->a[e]], *ub = &u[m->bs * bd->b[e]];
+      PetscReal          xi, L2 = 0, dot = 0;
+      for (PetscInt r = 0; r < m->bs; r++) {
+        xi = xb[r] - xa[r];
+        L2 += xi * xi;
+        dot += xi * PetscRealPart(ub[r] - ua[r]);
+      }
+      s[e] = dot / L2;
+    }
+    PetscFunctionReturn(0);
+  }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     PetscReal dir[3], L0, L, q;
     BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L,
