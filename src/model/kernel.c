@@ -97,6 +97,20 @@ static inline void BondForce(const PDModel *m, PetscInt e, PetscReal s, PetscRea
   }
 }
 
+/* Bonds come in runs of one first node (the neighbour search's order). At the start of node i's run the
+   row sum acc of the node before is added to out, and i's coordinates xc and values vc (of v) are loaded,
+   so that they stay in registers for the run and no bond waits on the store of the one before. */
+static inline void RunStart(PetscInt bs, const PetscReal *x, const PetscScalar *v, PetscScalar *out, PetscInt i, PetscInt *cur,
+                            PetscReal xc[3], PetscReal vc[3], PetscReal acc[3]) {
+  for (PetscInt r = 0; r < bs && *cur >= 0; r++) out[bs * *cur + r] += acc[r];
+  *cur = i;
+  for (PetscInt r = 0; r < bs; r++) {
+    xc[r]  = x[3 * i + r];
+    vc[r]  = PetscRealPart(v[bs * i + r]);
+    acc[r] = 0;
+  }
+}
+
 /* Internal forces f at u and, where ka is given, the tangent scalars at u as PDModelTangentScalars
    computes them (without kp): the residual and the tangent of one Newton iteration share the bond
    loop. */
@@ -111,22 +125,13 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   PetscCall(PetscArrayzero(f, bs * lat->nlocal));
   if (!geometric) {
     /* small kinematics, as the tangent's product (PDModelTangentApplyLocal): the stretch needs no square
-       root, so the law's evaluation does not wait for one; 1/|xi| scales the force at the end, and a
-       node's row is summed in registers over its run of bonds */
+       root, so the law's evaluation does not wait for one, and 1/|xi| scales the force at the end */
     PetscInt  cur   = -1;
     PetscReal xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
     for (PetscInt e = 0; e < bd->nbonds; e++) {
       const PetscInt i = bd->a[e], j = bd->b[e];
       PetscReal      xi[3], L2 = 0, dot = 0, s, q, g, gp;
-      if (i != cur) {
-        for (PetscInt r = 0; r < bs && cur >= 0; r++) f[bs * cur + r] += acc[r];
-        cur = i;
-        for (PetscInt r = 0; r < bs; r++) {
-          xc[r]  = lat->x[3 * i + r];
-          uc[r]  = PetscRealPart(u[bs * i + r]);
-          acc[r] = 0;
-        }
-      }
+      if (i != cur) RunStart(bs, lat->x, u, f, i, &cur, xc, uc, acc);
       for (PetscInt r = 0; r < bs; r++) {
         xi[r] = lat->x[3 * j + r] - xc[r];
         L2 += xi[r] * xi[r];
@@ -241,9 +246,8 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
 /* y = K x from the bond scalars, on every dof (no elimination of constrained ones): per bond the block
    B = ka e e^T + kb I acts on x_j - x_i, +B on node j and -B on node i (ka NULL: the linearised
    micromodulus; kb NULL: small kinematics). Under small kinematics B = ka xi xi^T / |xi|^2 needs neither
-   u (which may be NULL) nor a square root; bonds come in runs of one first node (the neighbour search's
-   order), whose coordinates, x and row sum stay in registers for the run, so that no bond waits on the
-   store of the one before. This is the Krylov solves' operator (tangent_product.c). */
+   u (which may be NULL) nor a square root, and a node's row is summed over its run of bonds (RunStart).
+   This is the Krylov solves' operator (tangent_product.c). */
 PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
                                         PetscScalar *y) {
   const PDBonds   *bd  = m->bonds;
@@ -259,15 +263,7 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
       const PetscInt   i = bd->a[e], j = bd->b[e];
       const PetscReal *xb = &lat->x[3 * j];
       PetscReal        xi[3], L2 = 0, dot = 0, t;
-      if (i != cur) {
-        for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
-        cur = i;
-        for (PetscInt r = 0; r < bs; r++) {
-          xc[r]  = lat->x[3 * i + r];
-          vc[r]  = PetscRealPart(x[bs * i + r]);
-          acc[r] = 0;
-        }
-      }
+      if (i != cur) RunStart(bs, lat->x, x, y, i, &cur, xc, vc, acc);
       for (PetscInt r = 0; r < bs; r++) {
         xi[r] = xb[r] - xc[r];
         L2 += xi[r] * xi[r];
