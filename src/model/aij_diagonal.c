@@ -12,7 +12,7 @@
 #define PD_DIAGONAL_INDEX "PDDiagonalIndex"
 
 typedef struct {
-  PetscObjectState nonzero_state; /* of the pattern the positions were found in */
+  PetscObjectState nonzero_state; /* of the (diagonal block's) pattern the positions were found in */
   PetscInt         n;
   PetscInt        *pos; /* row i's diagonal entry in the (diagonal block's) value array; -1 if none */
 } DiagonalIndex;
@@ -46,7 +46,7 @@ static PetscErrorCode GetIndex(Mat A, Mat Ad, DiagonalIndex **index) {
     PetscCall(PetscContainerDestroy(&c));
   } else
     PetscCall(PetscContainerGetPointer(c, (void **)&d));
-  PetscCall(MatGetNonzeroState(A, &state));
+  PetscCall(MatGetNonzeroState(Ad, &state));
   if (!d->pos || state != d->nonzero_state) {
     PetscCall(MatGetRowIJ(Ad, 0, PETSC_FALSE, PETSC_FALSE, &n, &ia, &ja, &done));
     PetscCheck(done, PetscObjectComm((PetscObject)A), PETSC_ERR_SUP, "The stiffness's rows cannot be read");

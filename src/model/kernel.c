@@ -35,8 +35,9 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
   {
     const PDLawBond *t       = PDModelBondThresholds(m, e, law);
     PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
-    /* below the damage threshold, on every branch and at every level: elastic, the state of most bonds */
-    if (PetscMax(m->kappa[e], s) < t->s0) {
+    /* below the damage threshold (and below the breaking one, which a coarse bilinear bond can have
+       lower): elastic on every branch and at every level, the state of most bonds */
+    if (PetscMax(m->kappa[e], s) < PetscMin(t->s0, t->sc)) {
       *g  = c * s;
       *gp = c;
       return;

@@ -76,20 +76,22 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
      once it meets that test, Predict; docs/solvers.md "Tolerances"). In its flexible form: right-
      preconditioned GMRES applies the preconditioner once more at the end of each solve to map its
      Krylov combination back, FGMRES keeps the preconditioned vectors and does not, and the tangent's
-     solves take two or three iterations each (docs/benchmarks/solve_profile.md, row "GMRES"). A
-     preconditioner chosen on the command line keeps PETSc's side unless -ksp_pc_side says otherwise. */
+     solves take two or three iterations each (docs/benchmarks/solve_profile.md, row "GMRES"); a side
+     chosen with -ksp_pc_side keeps GMRES, which takes either. A preconditioner chosen on the command
+     line keeps PETSc's side unless -ksp_pc_side says otherwise. */
   PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
   if (m->bs == 3 && !pc_chosen) {
     PC        pc;
-    PetscBool gmres, pcok;
+    PetscBool gmres, pcok, side_chosen;
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
     PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &pcok, PCBJACOBI, PCGAMG, ""));
-    if (gmres && pcok) {
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-ksp_pc_side", &side_chosen));
+    if (gmres && pcok && !side_chosen) {
       PetscCall(KSPSetType(ksp, KSPFGMRES));
       PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
-      PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
     }
+    if (gmres && pcok) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
   }
   PetscCall(SNESSetFromOptions(snes));
   /* the preconditioner is rebuilt at a fixed lag or, for 3D models under GAMG, when the Krylov solver
