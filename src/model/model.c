@@ -334,6 +334,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->f_work));
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree(m->ka));
+  PetscCall(VecDestroy(&m->ka_u)); /* left by a static run that stopped on an error */
   PetscCall(PetscFree(m->kb));
   PetscCall(PetscFree(m->kp));
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
