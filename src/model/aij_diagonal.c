@@ -4,9 +4,9 @@
    about three times as many entries as a node has bonds, so the search streams half the column indices
    of the matrix. Point Jacobi, the smoother of GAMG's finest level, takes the diagonal of the
    preconditioning matrix each time that matrix changes, which is once per Newton iteration while the
-   hierarchy is kept: on the half-notched beam those searches cost a third as much as the Krylov products
-   themselves (docs/benchmarks/solve_profile.md, row "diagonal by search"). The positions are found once
-   per non-zero pattern and kept with the matrix; the values read are the matrix's own. */
+   hierarchy is kept: on the half-notched beam the searches were a sizeable share of the solve
+   (docs/benchmarks/solve_profile.md, row "diagonal by search"). The positions are found once per
+   non-zero pattern and kept with the matrix; the values read are the matrix's own. */
 #include "pd_model.h"
 
 #define PD_DIAGONAL_INDEX "PDDiagonalIndex"
