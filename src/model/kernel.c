@@ -112,6 +112,21 @@ static inline void RunStart(PetscInt bs, const PetscReal *x, const PetscScalar *
   }
 }
 
+/* Small kinematics: the bond from node c (coordinates xc, values vc) to node j, xi = x_j - xc, its squared
+   length, and the projection xi . (v_j - vc), whose quotient by |xi|^2 is the stretch (v = u) or the
+   stretch rate along the bond (v = x). */
+static inline PetscReal Projection(PetscInt bs, const PetscReal *x, const PetscScalar *v, PetscInt j, const PetscReal xc[3],
+                                   const PetscReal vc[3], PetscReal xi[3], PetscReal *L2) {
+  PetscReal dot = 0;
+  *L2           = 0;
+  for (PetscInt r = 0; r < bs; r++) {
+    xi[r] = x[3 * j + r] - xc[r];
+    *L2 += xi[r] * xi[r];
+    dot += xi[r] * (PetscRealPart(v[bs * j + r]) - vc[r]);
+  }
+  return dot;
+}
+
 /* Internal forces f at u and, where ka is given, the tangent scalars at u as PDModelTangentScalars
    computes them (without kp): the residual and the tangent of one Newton iteration share the bond
    loop. */
@@ -131,18 +146,12 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     PetscReal xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
     for (PetscInt e = 0; e < bd->nbonds; e++) {
       const PetscInt i = bd->a[e], j = bd->b[e];
-      PetscReal      xi[3], L2 = 0, dot = 0, s, q, g, gp;
+      PetscReal      xi[3], L2, s, q, g, gp;
       if (i != cur) RunStart(bs, lat->x, u, f, i, &cur, xc, uc, acc);
-      for (PetscInt r = 0; r < bs; r++) {
-        xi[r] = lat->x[3 * j + r] - xc[r];
-        L2 += xi[r] * xi[r];
-        dot += xi[r] * (PetscRealPart(u[bs * j + r]) - uc[r]);
-      }
-      s = dot / L2;
+      s = Projection(bs, lat->x, u, j, xc, uc, xi, &L2) / L2;
       BondForce(m, e, s, &g, &gp);
       q = 1 / PetscSqrtReal(L2);
-      if (ka) ka[e] = gp * q;
-      if (kb) kb[e] = 0;
+      if (ka) ka[e] = gp * q; /* kb is NULL under small kinematics */
       if (m->commit_history) PDModelCommitBond(m, e, s);
       g *= q;
       for (PetscInt r = 0; r < bs; r++) {
@@ -261,16 +270,11 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
     PetscInt  cur   = -1;
     PetscReal xc[3] = {0, 0, 0}, vc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
     for (PetscInt e = 0; e < bd->nbonds; e++) {
-      const PetscInt   i = bd->a[e], j = bd->b[e];
-      const PetscReal *xb = &lat->x[3 * j];
-      PetscReal        xi[3], L2 = 0, dot = 0, t;
+      const PetscInt i = bd->a[e], j = bd->b[e];
+      PetscReal      xi[3], L2, dot, t;
       if (i != cur) RunStart(bs, lat->x, x, y, i, &cur, xc, vc, acc);
-      for (PetscInt r = 0; r < bs; r++) {
-        xi[r] = xb[r] - xc[r];
-        L2 += xi[r] * xi[r];
-        dot += xi[r] * (PetscRealPart(x[bs * j + r]) - vc[r]);
-      }
-      t = (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
+      dot = Projection(bs, lat->x, x, j, xc, vc, xi, &L2);
+      t   = (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
       for (PetscInt r = 0; r < bs; r++) {
         acc[r] -= t * xi[r];
         y[bs * j + r] += t * xi[r];
@@ -306,15 +310,13 @@ PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) 
   PetscFunctionBeginUser;
   if (m->scene->kinematics == PD_KINEMATICS_SMALL) { /* BondState's stretch, without the length it has no use for */
     for (PetscInt e = 0; e < bd->nbonds; e++) {
-      const PetscReal   *xa = &lat->x[3 * bd->a[e]], *xb = &lat->x[3 * bd->b[e]];
-      const PetscScalar *ua = &u[m->bs * bd->a[e]], *ub = &u[m->bs * bd->b[e]];
-      PetscReal          xi, L2 = 0, dot = 0;
+      const PetscInt a     = bd->a[e];
+      PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2;
       for (PetscInt r = 0; r < m->bs; r++) {
-        xi = xb[r] - xa[r];
-        L2 += xi * xi;
-        dot += xi * PetscRealPart(ub[r] - ua[r]);
+        xa[r] = lat->x[3 * a + r];
+        ua[r] = PetscRealPart(u[m->bs * a + r]);
       }
-      s[e] = dot / L2;
+      s[e] = Projection(m->bs, lat->x, u, bd->b[e], xa, ua, xi, &L2) / L2;
     }
     PetscFunctionReturn(0);
   }
