@@ -8,6 +8,9 @@ PetscErrorCode PDArcLengthRun(PDModel *, PDRecord *);
 /* A checkpoint named by -pd_restart, checked before anything is written (PDCheckpointValidate). */
 PetscErrorCode PDArcLengthValidateRestart(const PDModel *, const char *path);
 PetscErrorCode PDSolverConfigureKSP(PDModel *, KSP);
+/* Flexible GMRES preconditioned on the right where GMRES would take block ICC(0) or GAMG in 3D, unless the
+   command line chose the preconditioner or the side; before the KSP reads its options. */
+PetscErrorCode PDSolverPreferFlexible(PDModel *, KSP);
 PetscErrorCode PDExplicitRun(PDModel *, PDRecord *);
 PetscErrorCode PDExplicitPlan(PDModel *, PDRecord *);
 PetscErrorCode PDFailureSearchRun(PDModel *, PDRecord *);

@@ -32,11 +32,25 @@ typedef struct {
 #define NSTATE 16 /* scalars a checkpoint keeps of the driver (state_names below) */
 /* IMPL-EX tolerance of the fallback: the value docs/arclength.md measured on the 2D half-notched beam */
 #define PD_FALLBACK_IMPLEX 0.01
+/* Krylov tolerance of the predictor's direction where the augmented corrector follows: the direction only
+   starts the step and estimates the corrector's Schur complement, and the equilibrium the corrector
+   reaches does not depend on it (docs/arclength.md, "Linear tolerances") */
+#define PD_DIRECTION_RTOL 1e-4
+/* a corrector's linear solve stops once its true residual is this share of Newton's tolerance, as under
+   plain control (PD_KSP_ATOL_SHARE in static.c) */
+#define PD_CORRECTOR_ATOL_SHARE 0.5
+/* the augmented corrector's constraint row is weighted so that a constraint residual of this share of the
+   arc length counts as much as a force residual at the floor above */
+#define PD_CONSTRAINT_SHARE 1e-3
 
 typedef struct {
   PDModel       *m;
   Mat            J, P; /* the tangent (its product from the bond scalars, or P itself) and the assembled matrix of its preconditioner */
   KSP            ksp;
+  PetscReal      rtol, atol; /* Krylov tolerances of a solve with the tangent: 1e-8 and none, or -ksp_rtol and -ksp_atol */
+  PetscBool      matched;    /* linear tolerances matched to Newton's need (none given on the command line) */
+  PetscBool      floor_k;    /* and ksp measures the true residual: a corrector's solve stops at Newton's need */
+  PetscBool      floor_aug;  /* the same for the augmented corrector's solve */
   Vec            u, fint, R, q, duI, v, w, dprev, row;
   Vec            v_n;       /* v at the last accepted step: the guess a restart starts from (-pd_arclength_guess) */
   PetscInt       totals[2]; /* the run's Newton and Krylov iterations at the last accepted step */
@@ -101,7 +115,7 @@ static PetscErrorCode Residual(Arc *a, PetscReal *rnorm, PetscReal *fnorm) {
 
 /* Tangent at u, the preconditioner rebuilt every third assembly, q = -(K u_ref - f_ref) on free dofs, and
    (when asked) the path direction v per unit lambda: K du_II = q, v = du_II + u_ref. */
-static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
+static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction, PetscReal rtol) {
   PDModel *m = a->m;
   PetscInt n;
 
@@ -127,6 +141,7 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction) {
     PetscCall(VecAXPY(a->v, -1, m->u_ref));
     PetscCall(KSPSetInitialGuessNonzero(a->ksp, PETSC_TRUE));
   }
+  PetscCall(KSPSetTolerances(a->ksp, rtol, a->atol, PETSC_DEFAULT, PETSC_DEFAULT));
   PetscCall(Solve(a, a->q, a->v));
   PetscCall(KSPSetInitialGuessNonzero(a->ksp, PETSC_FALSE));
   PetscCall(KSPGetIterationNumber(a->ksp, &n));
@@ -213,11 +228,11 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
    constraint row c (on free dofs) and its lambda coefficient c.u_ref border the tangent; lambda is scaled
    by |v| so that both unknowns are displacements, and the Schur complement c.v / |v| comes from the
    predictor's direction v. */
-static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscReal *dlam, PetscInt *its,
+static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscReal fres, PetscReal *dlam, PetscInt *its,
                                       KSPConvergedReason *kr, PetscBool *ok) {
   PDModel        *m = a->m;
   PetscScalar     cu, cl, cv;
-  PetscReal       rhs, t;
+  PetscReal       rhs, t, weight;
   PetscBool       again;
   const PetscReal vnorm = a->vnorm;
 
@@ -236,6 +251,12 @@ static PetscErrorCode AugmentedUpdate(Arc *a, PDPath *p, PetscInt type, PetscRea
     PetscCall(VecAYPX(a->row, -1, p->f_n));
     PetscCall(VecScale(a->row, 0.5));
   }
+  /* the row in force units: the Krylov residual mixes it with the force rows, and a constraint residual
+     of PD_CONSTRAINT_SHARE of the arc length weighs as much as the force residual fres the solve may leave
+     (the preconditioner's Schur estimate is weighted with it, so the preconditioned operator is the same) */
+  weight = dl != 0 ? fres / (PD_CONSTRAINT_SHARE * PetscAbsReal(dl)) : 1;
+  PetscCall(VecScale(a->row, weight));
+  rhs *= weight;
   PetscCall(VecDot(a->row, m->u_ref, &cl));
   PetscCall(VecDot(a->row, a->v, &cv));
   PetscCall(VecPointwiseMult(a->w, a->row, m->fixed));
@@ -314,7 +335,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam = p->lambda_n;
   PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
-  PetscCall(TangentAndDirection(a, PETSC_TRUE));
+  PetscCall(TangentAndDirection(a, PETSC_TRUE, aug && a->matched ? PetscMax(a->rtol, PD_DIRECTION_RTOL) : a->rtol));
   PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
   a->why = "no predictor meets the constraint";
   if (!fine) PetscFunctionReturn(0);
@@ -398,11 +419,14 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     a->why = "Newton cycles with halved updates";
     if (damp < 1 && m->scene->arc_halved_its > 0 && ++damped > m->scene->arc_halved_its) PetscFunctionReturn(0);
     /* plain control (dlambda = 0) and the augmented solve need no direction */
-    PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug));
+    PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug, a->rtol));
     PetscCall(VecScale(a->R, -1));
-    if (aug)
-      PetscCall(AugmentedUpdate(a, p, type, dl, &dlam, &n, &kr, &fine));
-    else {
+    if (aug) {
+      PetscCall(
+          KSPSetTolerances(a->aug.ksp, a->rtol, a->floor_aug ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol, PETSC_DEFAULT, PETSC_DEFAULT));
+      PetscCall(AugmentedUpdate(a, p, type, dl, PD_CORRECTOR_ATOL_SHARE * tol, &dlam, &n, &kr, &fine));
+    } else {
+      PetscCall(KSPSetTolerances(a->ksp, a->rtol, a->floor_k ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol, PETSC_DEFAULT, PETSC_DEFAULT));
       PetscCall(Solve(a, a->R, a->duI));
       PetscCall(KSPGetIterationNumber(a->ksp, &n));
       PetscCall(KSPGetConvergedReason(a->ksp, &kr));
@@ -662,8 +686,10 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   if (a.kx_n) PetscCall(PetscMalloc1(m->bonds->nbonds, &a.kx_prev));
   PetscCall(KSPCreate(comm, &a.ksp));
   PetscCall(PDSolverConfigureKSP(m, a.ksp));
+  PetscCall(PDSolverPreferFlexible(m, a.ksp));
   PetscCall(KSPSetTolerances(a.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 20000));
   PetscCall(KSPSetFromOptions(a.ksp));
+  PetscCall(KSPGetTolerances(a.ksp, &a.rtol, &a.atol, NULL, NULL));
   PetscCall(KSPConvergedDefaultSetUIRNorm(a.ksp));
   PetscCall(KSPGetPC(a.ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)a.ksp, KSPPREONLY, &a.direct));
@@ -672,6 +698,24 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   a.augmented =
       sc->arc_augmented && !a.direct && (sc->arc_type == PD_ARC_CMOD || sc->arc_type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
   if (a.augmented) PetscCall(PDAugmentedCreate(a.J, a.ksp, &a.aug));
+  /* linear tolerances matched to Newton's need, unless the command line set them (docs/arclength.md,
+     "Linear tolerances") */
+  {
+    PetscBool   chosen = PETSC_FALSE, has;
+    PCSide      side;
+    const char *names[] = {"-ksp_rtol", "-ksp_atol", "-pd_augmented_ksp_rtol", "-pd_augmented_ksp_atol"};
+    for (size_t k = 0; k < sizeof names / sizeof names[0]; k++) {
+      PetscCall(PetscOptionsHasName(NULL, NULL, names[k], &has));
+      chosen = chosen || has ? PETSC_TRUE : PETSC_FALSE;
+    }
+    a.matched = !chosen && !a.direct ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(KSPGetPCSide(a.ksp, &side));
+    a.floor_k = a.matched && side == PC_RIGHT ? PETSC_TRUE : PETSC_FALSE;
+    if (a.augmented) {
+      PetscCall(KSPGetPCSide(a.aug.ksp, &side));
+      a.floor_aug = a.matched && side == PC_RIGHT ? PETSC_TRUE : PETSC_FALSE;
+    }
+  }
   if (sc->restart[0])
     PetscCall(ReadCheckpoint(&a, &path, rec));
   else if (from)

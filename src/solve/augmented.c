@@ -18,7 +18,8 @@
    estimates the Schur complement d - c.K^-1 q; the caller passes it from the direction v of the step's
    predictor, where it is exact for the tangent of that moment. The preconditioned operator is block
    lower triangular with diagonal blocks P_K^-1 K and d/s, plus the rank-one column q: GMRES needs about
-   the iterations of one solve with K, where bordering needs two. The operator is a MATNEST of the
+   the iterations of one solve with K, where bordering needs two. FGMRES, on the right: its residual is
+   the true one, which the corrector's floor measures. The operator is a MATNEST of the
    tangent and dense border blocks; the preconditioner is a PCSHELL because it must apply the Newton
    PC object as is (PCFIELDSPLIT would set up its own preconditioner for the K block). */
 #include "augmented.h"
@@ -97,7 +98,10 @@ PetscErrorCode PDAugmentedCreate(Mat K, KSP knewton, PDAugmented *aug) {
   aug->knewton = knewton;
   PetscCall(KSPCreate(comm, &aug->ksp));
   PetscCall(KSPSetOptionsPrefix(aug->ksp, "pd_augmented_"));
-  PetscCall(KSPSetType(aug->ksp, KSPGMRES));
+  /* preconditioned on the right, so that the residual it stops on is the true one (the corrector's floor,
+     arclength.c); flexible, so that the last iteration needs no extra preconditioner application */
+  PetscCall(KSPSetType(aug->ksp, KSPFGMRES));
+  PetscCall(KSPSetPCSide(aug->ksp, PC_RIGHT));
   PetscCall(PDInterruptWatchKSP(aug->ksp));
   PetscCall(KSPGMRESSetRestart(aug->ksp, 60));
   PetscCall(KSPGetTolerances(knewton, &rtol, NULL, NULL, &maxit));

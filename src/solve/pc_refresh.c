@@ -14,7 +14,8 @@
    - when stale: 3D models under GAMG (the default from PD_GAMG_MIN_NODES_SOFTENING nodes, or -pc_type gamg), whose set-up (aggregation,
    Galerkin products, eigenvalue estimates) costs several V-cycles. A hierarchy built before the damage still fits the tangent, which damage
    changes in a band of bonds. Each solve is measured in Krylov iterations per decade of residual reduction (its over log10(1/rtol):
-   Eisenstat-Walker moves rtol from solve to solve). The first solve after a rebuild sets the reference; a later one that needs more than
+   Eisenstat-Walker moves rtol from solve to solve; a solve stopped at the drivers' absolute floor counts the decades from its
+   right-hand side down to the floor). The first solve after a rebuild sets the reference; a later one that needs more than
      PD_STALE_FACTOR times it plus PD_STALE_SLACK, or that fails, asks for a rebuild at the next
      assembly, and a failed one may be made again at once with a fresh preconditioner.
    docs/solvers.md and docs/benchmarks/pc_refresh.md have the measurements. */
@@ -27,7 +28,7 @@
 
 PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
   PetscInt           its;
-  PetscReal          rtol, per_decade;
+  PetscReal          rtol, atol, decades, per_decade;
   KSPConvergedReason reason;
   PetscBool          guess;
 
@@ -36,12 +37,20 @@ PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
   if (!r->when_stale) PetscFunctionReturn(0);
   PetscCall(KSPGetIterationNumber(ksp, &its));
   PetscCall(KSPGetConvergedReason(ksp, &reason));
-  PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
+  PetscCall(KSPGetTolerances(ksp, &rtol, &atol, NULL, NULL));
   PetscCall(KSPGetInitialGuessNonzero(ksp, &guess));
   /* a solve started from a guess reduced its residual by fewer decades than rtol says: it measures
      nothing, unless it failed */
   if (guess && reason >= 0) PetscFunctionReturn(0);
-  per_decade = its / PetscMax(1.0, -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON)));
+  decades = -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON));
+  if (reason == KSP_CONVERGED_ATOL) { /* stopped at the drivers' floor (a true residual, from a zero guess) */
+    Vec       b;
+    PetscReal bnorm;
+    PetscCall(KSPGetRhs(ksp, &b));
+    PetscCall(VecNorm(b, NORM_2, &bnorm));
+    decades = PetscLog10Real(PetscMax(bnorm / atol, 1.0));
+  }
+  per_decade = its / PetscMax(1.0, decades);
   if (r->measure) { /* the first solve with a fresh preconditioner */
     r->fresh   = per_decade;
     r->measure = PETSC_FALSE;

@@ -36,9 +36,38 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refresh) {
-  KSP       ksp;
+/* GMRES (a softening model's consistent tangent, PDSolverConfigureKSP) with block ICC(0) or GAMG in 3D:
+   preconditioned on the right, so that its residual is the true one, which Eisenstat-Walker's tolerance
+   is defined on and which Newton's own test measures (the drivers then stop each linear solve once it
+   meets that test: Predict, and the path-following corrector; docs/solvers.md "Tolerances"). In its
+   flexible form: right-preconditioned GMRES applies the preconditioner once more at the end of each solve
+   to map its Krylov combination back, FGMRES keeps the preconditioned vectors and does not, and the
+   tangent's solves take two or three iterations each (docs/benchmarks/solve_profile.md, row "GMRES"); a
+   side chosen with -ksp_pc_side keeps GMRES, which takes either. A preconditioner chosen on the command
+   line keeps PETSc's side unless -ksp_pc_side says otherwise. Called before the KSP reads its options. */
+PetscErrorCode PDSolverPreferFlexible(PDModel *m, KSP ksp) {
   PetscBool pc_chosen;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
+  if (m->bs == 3 && !pc_chosen) {
+    PC        pc;
+    PetscBool gmres, pcok, side_chosen;
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &pcok, PCBJACOBI, PCGAMG, ""));
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-ksp_pc_side", &side_chosen));
+    if (gmres && pcok && !side_chosen) {
+      PetscCall(KSPSetType(ksp, KSPFGMRES));
+      PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
+    }
+    if (gmres && pcok) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refresh) {
+  KSP ksp;
 
   PetscFunctionBeginUser;
   PetscCall(SNESSetType(snes, m->linear ? SNESKSPONLY : SNESNEWTONLS));
@@ -70,29 +99,7 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
      (docs/reinforcement.md) */
   PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
-  /* GMRES (a softening model's consistent tangent, PDSolverConfigureKSP) with block ICC(0) or GAMG in
-     3D: preconditioned on the right, so that its residual is the true one, which Eisenstat-Walker's
-     tolerance is defined on and which Newton's own test measures (the driver then stops each linear solve
-     once it meets that test, Predict; docs/solvers.md "Tolerances"). In its flexible form: right-
-     preconditioned GMRES applies the preconditioner once more at the end of each solve to map its
-     Krylov combination back, FGMRES keeps the preconditioned vectors and does not, and the tangent's
-     solves take two or three iterations each (docs/benchmarks/solve_profile.md, row "GMRES"); a side
-     chosen with -ksp_pc_side keeps GMRES, which takes either. A preconditioner chosen on the command
-     line keeps PETSc's side unless -ksp_pc_side says otherwise. */
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
-  if (m->bs == 3 && !pc_chosen) {
-    PC        pc;
-    PetscBool gmres, pcok, side_chosen;
-    PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPGMRES, &gmres));
-    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &pcok, PCBJACOBI, PCGAMG, ""));
-    PetscCall(PetscOptionsHasName(NULL, NULL, "-ksp_pc_side", &side_chosen));
-    if (gmres && pcok && !side_chosen) {
-      PetscCall(KSPSetType(ksp, KSPFGMRES));
-      PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
-    }
-    if (gmres && pcok) PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
-  }
+  PetscCall(PDSolverPreferFlexible(m, ksp));
   PetscCall(SNESSetFromOptions(snes));
   /* the preconditioner is rebuilt at a fixed lag or, for 3D models under GAMG, when the Krylov solver
      finds it stale (src/solve/pc_refresh.c), across Newton iterations, limiter stages and increments,
