@@ -5,11 +5,15 @@ never (built once, from the elastic tangent), or when the Krylov solver finds it
 multigrid level instead of two, and with every row of the matrix rewritten at each assembly. The Gregoire D = 100 mm half-notched beam, dx = 5 mm (14,000 nodes), to
 CMOD 0.12 mm, past its peak. The same beam under path following with IMPL-EX to CMOD 30 um: the path
 direction's Krylov solve started from the last direction (the default) or from zero, and whole assemblies.
-Each configuration of a beam runs one after the other in one invocation. CPU times are
+Path following's linear tolerances: matched to Newton's need (the default: the corrector's solve stops at
+half of Newton's tolerance, the predictor's direction at 1e-4) against fixed ones (-ksp_rtol 1e-8 for every
+solve) and the solves before that (fixed, and GMRES preconditioned on the left), on the D = 100 mm beam
+under IMPL-EX and the D = 50 mm half-notched beam (3,500 nodes) traced to 10 % of its peak, implicit and
+under IMPL-EX. Each configuration of a beam runs one after the other in one invocation. CPU times are
 the runs' own (wait4); ratios are taken on the default's. Writes docs/benchmarks/pc_refresh.json and
-pc_refresh.md (about 20 minutes on one core).
+pc_refresh.md (about 30 minutes on one core).
 
-Usage: benchmarks/pc_refresh.py [d100] [d100_implex] [--report]   (the beams named, all by default)
+Usage: benchmarks/pc_refresh.py [d100] [d100_implex] [d50_arclength] [d50_implex] [--report]   (the beams named, all by default)
 """
 import csv
 import json
@@ -24,7 +28,17 @@ JSON = os.path.join(RESULTS_DIR, "pc_refresh.json")
 BEAMS = {"d100": ("gregoire_d100_hn.opts", ["-pd_stop_cmod", "1.2e-4"],
                   "D = 100 mm half-notched, dx = 5 mm, 14,000 nodes, GAMG, to CMOD 0.12 mm"),
          "d100_implex": ("gregoire_d100_hn.opts", ["-pd_control", "arclength", "-pd_arclength_implex", "0.03", "-pd_stop_cmod", "3e-5"],
-                         "D = 100 mm half-notched, dx = 5 mm, 14,000 nodes, GAMG, path following with IMPL-EX 0.03 to CMOD 30 um")}
+                         "D = 100 mm half-notched, dx = 5 mm, 14,000 nodes, GAMG, path following with IMPL-EX 0.03 to CMOD 30 um"),
+         "d50_arclength": ("gregoire_d50_hn.opts", ["-pd_control", "arclength", "-pd_stop_fraction", "0.1", "-pd_stop_cmod", "0",
+                                                    "-pd_lambda_max", "4", "-pd_steps", "800"],
+                           "D = 50 mm half-notched, dx = 5 mm, 3,500 nodes, GAMG, path following (CMOD, limiter) to 10 % of the peak"),
+         "d50_implex": ("gregoire_d50_hn.opts", ["-pd_control", "arclength", "-pd_arclength_implex", "0.03", "-pd_stop_fraction", "0.1",
+                                                 "-pd_stop_cmod", "0", "-pd_lambda_max", "4", "-pd_steps", "800"],
+                        "D = 50 mm half-notched, dx = 5 mm, 3,500 nodes, GAMG, path following with IMPL-EX 0.03 to 10 % of the peak")}
+# path following's linear solves: fixed tolerances for every solve, and the solves before they were matched to Newton's need
+FIXED = ("fixed linear tolerances", ["-ksp_rtol", "1e-8"])
+PREVIOUS = ("previous linear solves", ["-ksp_rtol", "1e-8", "-ksp_pc_side", "left", "-pd_augmented_ksp_type", "gmres",
+                                       "-pd_augmented_ksp_pc_side", "left"])
 # label -> options, per beam
 CONFIGS = {"d100": [("rebuilt when stale (default)", []), ("every third assembly", ["-snes_lag_preconditioner", "3"]),
                     ("never rebuilt", ["-snes_lag_preconditioner", "-2"]),
@@ -34,7 +48,9 @@ CONFIGS = {"d100": [("rebuilt when stale (default)", []), ("every third assembly
            # IMPL-EX: two tight Krylov solves per step; the path direction's started from zero instead of from the last
            # direction (docs/arclength.md), and every row of the matrix rewritten at each assembly
            "d100_implex": [("default", []), ("direction from zero", ["-pd_arclength_guess", "false"]),
-                           ("whole assembly", ["-pd_assembly_changed_rows", "false"])]}
+                           ("whole assembly", ["-pd_assembly_changed_rows", "false"]), FIXED, PREVIOUS],
+           "d50_arclength": [("default", []), FIXED, PREVIOUS],
+           "d50_implex": [("default", []), FIXED, PREVIOUS]}
 EVENTS = ["PCSetUp", "PCApply", "MatMult", "KSPSolve", "PDAssembly"]
 
 
