@@ -33,12 +33,15 @@ CONFIGS = {"default": [], REFERENCE: ["-pd_limiter_max_bonds", "1"],
                                  "-pd_assembly_changed_rows", "false", "-pd_tangent_product", "matrix", "-pc_type", "bjacobi",
                                  "-pd_mat_type", "sbaij", "-pd_tangent_with_residual", "false"],
            # the defaults before FGMRES replaced right-preconditioned GMRES, the AIJ diagonal was read through an
-           # index and the tangent scalars came from the residual's bond loop, and each alone
+           # index, the tangent scalars came from the residual's bond loop and a residual after a limiter grant
+           # recomputed only the rows it changed, and each alone (the residual's rows need the residual's
+           # displacement record, which its tangent scalars keep: "tangent's own loop" turns off both)
            "last defaults": ["-ksp_type", "gmres", "-ksp_gmres_restart", "60", "-pd_diagonal_index", "false",
                              "-pd_tangent_with_residual", "false"],
            "GMRES": ["-ksp_type", "gmres", "-ksp_gmres_restart", "60"],
            "diagonal by search": ["-pd_diagonal_index", "false"],
            "tangent's own loop": ["-pd_tangent_with_residual", "false"],
+           "whole residual after a grant": ["-pd_residual_rows", "false"],
            "block ICC(0)": ["-pc_type", "bjacobi", "-pd_mat_type", "sbaij", "-ksp_pc_side", "right"],
            # GAMG asked for where the model is below the 2,000 nodes it is the default from
            "GAMG": ["-pc_type", "gamg", "-ksp_pc_side", "right"],
@@ -105,8 +108,9 @@ def report(res):
              "wait4) does not, and the ratios are taken on it. From 2,000 nodes a softening 3D model is preconditioned by GAMG",
              "(FGMRES, the hierarchy rebuilt when stale); `block ICC(0)` is the preconditioner it replaced at dx = 5 mm, and",
              "`left preconditioned` the side GAMG had before at dx = 2.5 mm. `last defaults` is the default before FGMRES, the",
-             "indexed diagonal and the tangent scalars from the residual's loop (docs/solvers.md), and `GMRES`,",
-             "`diagonal by search` and `tangent's own loop` undo one each.", ""]
+             "indexed diagonal, the tangent scalars from the residual's loop and the residual's rows after a limiter grant",
+             "(docs/solvers.md); `GMRES`, `diagonal by search`, `tangent's own loop` (which turns off the rows too) and",
+             "`whole residual after a grant` undo one each.", ""]
     for dx in sorted({r["dx"] for r in res.values()}, reverse=True):
         order = list(CONFIGS)
         runs = sorted((r for r in res.values() if r["dx"] == dx), key=lambda r: order.index(r["label"]) if r["label"] in order else len(order))

@@ -4,28 +4,45 @@
 #include "pd_material.h"
 #include <petscsnes.h>
 
+/* Where each local node's internal force gathers from in the bond arrays (kernel.c PDModelInternalForceRows) */
+typedef struct {
+  PetscBool ready;
+  PetscInt *run_start, *run_end; /* [nlocal] the bonds the node starts */
+  PetscInt *end_off, *end_bond;  /* CSR by node of the bonds that end at it, in bond order */
+} PDModelRowIndex;
+
 typedef struct {
   const PDScene   *scene;
   const PDLattice *lat;
   const PDBonds   *bonds;
-  PetscInt         bs;                        /* dofs per node: 2 or 3 */
-  PetscBool        linear;                    /* elastic law with small kinematics: K u = f, one solve per step */
-  PetscReal        lambda;                    /* current load factor */
-  PetscReal        bc_scale;                  /* diagonal given to constrained dofs, of the order of a bond stiffness */
-  PetscReal        force_scale;               /* size of the load at lambda = 1 (N), for absolute tolerances */
-  Vec              u_local;                   /* ghosted work copy of the displacement */
-  Vec              f_local;                   /* ghosted work vector for internal forces */
-  Vec              x_local;                   /* ghosted work vector for tangent products (created on first use) */
-  PetscReal       *ka, *kb;                   /* bond tangent scalars, NULL while constant (kb also under small kinematics) */
-  PetscReal       *kp;                        /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
-  PetscBool        ka_with_residual;          /* the residual computes ka and kb too (model.c PDModelResidual) */
-  PetscBool        ka_at_residual;            /* ka and kb are those of the last residual, */
-  Vec              ka_u;                      /* at this displacement */
-  PetscReal        ka_lambda;                 /* and this load factor */
-  PDLaw            law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_ELASTIC */
-  PDSteel          steel[PD_MAX_BARS];        /* the steel of each bar */
-  PetscBool        softening;                 /* some bond law softens or breaks: bonds carry history */
-  PetscBool        gamg_after_icc;            /* ICC(0) failed on the tangent: algebraic multigrid from then on */
+  PetscInt         bs;               /* dofs per node: 2 or 3 */
+  PetscBool        linear;           /* elastic law with small kinematics: K u = f, one solve per step */
+  PetscReal        lambda;           /* current load factor */
+  PetscReal        bc_scale;         /* diagonal given to constrained dofs, of the order of a bond stiffness */
+  PetscReal        force_scale;      /* size of the load at lambda = 1 (N), for absolute tolerances */
+  Vec              u_local;          /* ghosted work copy of the displacement */
+  Vec              f_local;          /* ghosted work vector for internal forces */
+  Vec              x_local;          /* ghosted work vector for tangent products (created on first use) */
+  PetscReal       *ka, *kb;          /* bond tangent scalars, NULL while constant (kb also under small kinematics) */
+  PetscReal       *kp;               /* ka of the secant preconditioning matrix (-pd_pc_matrix secant), or NULL */
+  PetscBool        ka_with_residual; /* the residual computes ka and kb too (model.c PDModelResidual) */
+  PetscBool        ka_at_residual;   /* ka and kb are those of the last residual, */
+  Vec              ka_u;             /* at this displacement */
+  PetscReal        ka_lambda;        /* and this load factor */
+  /* a residual at the displacement of the last one, after a limiter grant, recomputes only the rows of the
+     bonds the grant changed (PDModelResidual, -pd_residual_rows) */
+  PetscBool       track_grants;     /* the limiter records the bonds it changes */
+  PetscBool       rows_after_grant; /* set by the driver after a grant, taken by the next residual */
+  PetscInt       *changed;          /* bonds whose level changed since the last residual */
+  PetscInt        nchanged;         /* their count; -1: too many to be worth it */
+  PetscInt        changed_cap;
+  Vec             r_last;            /* the last residual, at ka_u and ka_lambda */
+  PetscInt        residuals_by_rows; /* residuals so evaluated */
+  PDModelRowIndex rows;
+  PDLaw           law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_ELASTIC */
+  PDSteel         steel[PD_MAX_BARS];        /* the steel of each bar */
+  PetscBool       softening;                 /* some bond law softens or breaks: bonds carry history */
+  PetscBool       gamg_after_icc;            /* ICC(0) failed on the tangent: algebraic multigrid from then on */
   /* per-bond history, allocated only when softening */
   PetscReal     *kappa;                     /* largest stretch reached, committed at accepted steps */
   unsigned char *level;                     /* PDBondLevel the limiter allows the bond to reach */

@@ -165,6 +165,7 @@ typedef struct {
   PetscBool        assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */
   PDTangentProduct tangent_product;       /* Newton's operator: products from the bond scalars, or the assembled matrix */
   PetscBool        tangent_with_residual; /* Newton's tangent scalars from the residual's bond loop */
+  PetscBool        residual_rows;         /* after a limiter grant, the residual recomputes only the rows it changed */
   PetscBool        diagonal_index;        /* an AIJ stiffness's diagonal read through an index of its positions */
   PetscInt         limiter_max;           /* bond events granted per Newton iteration; 0: no cap; -1: by bond count */
   PetscInt         limiter_stage_its;     /* Newton iterations between grants while events are pending */

@@ -127,8 +127,42 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
    the residual's bond loop computes against those of their own loop (ka_diff, largest difference), whether
    the next assembly at that displacement used them (reused), and P's diagonal as MatGetDiagonal reads it
    (through the index of src/model/aij_diagonal.c on AIJ) against its entries (diag_diff). */
+/* After a limiter grant at the residual's displacement the residual recomputes only the rows of the bonds
+   the grant changed (model.c PDModelResidual). Against the whole loop at the same state: the largest
+   difference of the residual and of the tangent scalars, and the events granted and residuals so made. */
+static PetscErrorCode RowsAfterGrant(PDModel *m, Vec u, PetscReal *diff, PetscInt *granted, PetscInt *by_rows) {
+  Vec        Rrows, Rfull;
+  PetscReal *ka_rows;
+  PetscInt   ncand;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(u, &Rrows));
+  PetscCall(VecDuplicate(u, &Rfull));
+  PetscCall(PetscMalloc1(m->bonds->nbonds, &ka_rows));
+  /* the softening bonds back below their damage threshold, so that the stretched ones are candidates */
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++)
+    if (m->level[e] == PD_BOND_SOFTENING) m->level[e] = PD_BOND_ELASTIC;
+  m->track_grants = PETSC_TRUE;
+  PetscCall(PDModelResidual(NULL, u, Rfull, m));
+  PetscCall(PDModelGrantEvents(m, u, 7, &ncand, granted));
+  m->rows_after_grant = PETSC_TRUE;
+  PetscCall(PDModelResidual(NULL, u, Rrows, m));
+  *by_rows = m->residuals_by_rows;
+  PetscCall(PetscArraycpy(ka_rows, m->ka, m->bonds->nbonds));
+  PetscCall(PDModelResidual(NULL, u, Rfull, m)); /* the whole loop, at the state after the grant */
+  PetscCall(VecAXPY(Rrows, -1, Rfull));
+  PetscCall(VecNorm(Rrows, NORM_INFINITY, diff));
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) *diff = PetscMax(*diff, PetscAbsReal(ka_rows[e] - m->ka[e]));
+  m->track_grants = PETSC_FALSE;
+  PetscCall(VecDestroy(&m->r_last));
+  PetscCall(PetscFree(ka_rows));
+  PetscCall(VecDestroy(&Rrows));
+  PetscCall(VecDestroy(&Rfull));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscInt *nreg, PetscReal *ka_diff,
-                                       PetscBool *reused, PetscReal *diag_diff) {
+                                       PetscBool *reused, PetscReal *diag_diff, PetscReal *rows_diff, PetscInt rows_used[2]) {
   PDScene     sc;
   PDLattice   lat;
   PDBonds     bd;
@@ -192,7 +226,8 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
     for (PetscInt e = 0; e < bd.nbonds; e++) *ka_diff = PetscMax(*ka_diff, PetscAbsReal(m.ka[e] - ka_own[e]));
     for (PetscInt e = 0; m.kb && e < bd.nbonds; e++) *ka_diff = PetscMax(*ka_diff, PetscAbsReal(m.kb[e] - kb_own[e]));
     PetscCall(PDModelJacobian(NULL, u, J, P, &m));
-    *reused            = m.ka_at_residual;
+    *reused = m.ka_at_residual;
+    PetscCall(RowsAfterGrant(&m, u, rows_diff, &rows_used[0], &rows_used[1]));
     m.ka_with_residual = PETSC_FALSE;
     PetscCall(VecDestroy(&m.ka_u));
     PetscCall(PetscFree2(ka_own, kb_own));
@@ -337,11 +372,11 @@ int main(int argc, char **argv) {
                           "-pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
                           "-pd_law nonlinear -pd_kinematics finite", "-pd_law nonlinear -pd_tangent_product matrix"};
     for (size_t k = 0; k < sizeof prod / sizeof *prod; k++) {
-      PetscReal diff, ka_diff, diag_diff;
+      PetscReal diff, ka_diff, diag_diff, rows_diff;
       PetscBool shell, reused;
-      PetscInt  nreg;
+      PetscInt  nreg, rows_used[2];
       char      what[200];
-      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &nreg, &ka_diff, &reused, &diag_diff));
+      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &nreg, &ka_diff, &reused, &diag_diff, &rows_diff, rows_used));
       PetscCall(PetscSNPrintf(what, sizeof what, "product from the bond scalars where it applies: %s", prod[k]));
       Check(shell == (k < 2) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)shell, k < 2);
       PetscCall(PetscSNPrintf(what, sizeof what, "|J x - P x| / |P x| < 1e-13: %s", prod[k]));
@@ -355,6 +390,14 @@ int main(int argc, char **argv) {
       Check(reused, what, (PetscReal)reused, 1);
       PetscCall(PetscSNPrintf(what, sizeof what, "MatGetDiagonal equals the diagonal entries: %s", prod[k]));
       Check(diag_diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, diag_diff, 0);
+      /* rows in the whole loop's order: equal to the last bit; finite kinematics keeps the whole loop */
+      PetscCall(PetscSNPrintf(what, sizeof what, "the limiter granted events at the residual's displacement: %s", prod[k]));
+      Check(rows_used[0] > 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)rows_used[0], 1);
+      PetscCall(PetscSNPrintf(what, sizeof what, "the residual after the grant recomputed only its rows (%s): %s",
+                              k == 2 ? "not under finite kinematics" : "once", prod[k]));
+      Check(rows_used[1] == (k == 2 ? 0 : 1) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)rows_used[1], k == 2 ? 0 : 1);
+      PetscCall(PetscSNPrintf(what, sizeof what, "residual and tangent scalars from the rows equal the whole loop's: %s", prod[k]));
+      Check(rows_diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, rows_diff, 0);
     }
   }
   {

@@ -184,6 +184,103 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   PetscFunctionReturn(0);
 }
 
+/* Where each node's contributions lie in the bond arrays: its run (the bonds it starts, contiguous) and
+   the bonds that end at it, in bond order. PETSC_FALSE if a node starts two runs (the rows below then
+   could not follow the whole loop's order). */
+static PetscErrorCode RowIndexSetUp(PDModel *m, PetscBool *ok) {
+  const PDBonds   *bd = m->bonds;
+  const PetscInt   n  = m->lat->nlocal;
+  PDModelRowIndex *ix = &m->rows;
+  PetscInt        *fill;
+
+  PetscFunctionBeginUser;
+  *ok = PETSC_TRUE;
+  PetscCall(PetscCalloc4(n, &ix->run_start, n, &ix->run_end, n + 1, &ix->end_off, PetscMax(1, bd->nbonds), &ix->end_bond));
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e];
+    if (e == 0 || bd->a[e - 1] != i) {
+      if (ix->run_end[i] > 0) *ok = PETSC_FALSE; /* a second run */
+      ix->run_start[i] = e;
+    }
+    ix->run_end[i] = e + 1;
+    ix->end_off[bd->b[e] + 1]++;
+  }
+  for (PetscInt k = 0; k < n; k++) ix->end_off[k + 1] += ix->end_off[k];
+  PetscCall(PetscCalloc1(n, &fill));
+  for (PetscInt e = 0; e < bd->nbonds; e++) ix->end_bond[ix->end_off[bd->b[e]] + fill[bd->b[e]]++] = e;
+  PetscCall(PetscFree(fill));
+  ix->ready = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelRowIndexDestroy(PDModel *m) {
+  PDModelRowIndex *ix = &m->rows;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree4(ix->run_start, ix->run_end, ix->end_off, ix->end_bond));
+  ix->ready = PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Rows rows[0..n) of PDModelInternalForceLocal's f under small kinematics, into fr[bs k + r], with ka of
+   every bond they touch. Each row is summed as the whole loop sums it: the contributions of the bonds
+   ending at the node in bond order, its own run's sum where the run ends. So the rows equal the whole
+   loop's to the last bit, and a residual after a limiter grant recomputes only the rows of the bonds it
+   changed (model.c PDModelResidual). *ok is PETSC_FALSE where that order cannot be followed. */
+PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscInt n, const PetscInt *rows, PetscScalar *fr, PetscReal *ka,
+                                        PetscBool *ok) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscInt   bs  = m->bs;
+
+  PetscFunctionBeginUser;
+  *ok = m->scene->kinematics == PD_KINEMATICS_FINITE ? PETSC_FALSE : PETSC_TRUE;
+  if (*ok && !m->rows.ready) PetscCall(RowIndexSetUp(m, ok));
+  if (!*ok) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt i = rows[k], e0 = m->rows.run_start[i], e1 = m->rows.run_end[i];
+    PetscReal      xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0}, f[3] = {0, 0, 0};
+    PetscBool      pending = e1 > e0 ? PETSC_TRUE : PETSC_FALSE;
+    for (PetscInt r = 0; r < bs; r++) {
+      xc[r] = lat->x[3 * i + r];
+      uc[r] = PetscRealPart(u[bs * i + r]);
+    }
+    for (PetscInt e = e0; e < e1; e++) { /* the run's sum, as the whole loop forms it */
+      PetscReal xi[3], L2, s, q, g, gp;
+      s = Projection(bs, lat->x, u, bd->b[e], xc, uc, xi, &L2) / L2;
+      BondForce(m, e, s, &g, &gp);
+      q = 1 / PetscSqrtReal(L2);
+      if (ka) ka[e] = gp * q;
+      g *= q;
+      for (PetscInt r = 0; r < bs; r++) acc[r] -= g * xi[r];
+    }
+    for (PetscInt t = m->rows.end_off[i]; t < m->rows.end_off[i + 1]; t++) {
+      const PetscInt e = m->rows.end_bond[t], a = bd->a[e];
+      PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2, s, q, g, gp;
+      if (pending && e >= e1) {
+        for (PetscInt r = 0; r < bs; r++) f[r] += acc[r];
+        pending = PETSC_FALSE;
+      }
+      for (PetscInt r = 0; r < bs; r++) {
+        xa[r] = lat->x[3 * a + r];
+        ua[r] = PetscRealPart(u[bs * a + r]);
+      }
+      s = Projection(bs, lat->x, u, i, xa, ua, xi, &L2) / L2;
+      BondForce(m, e, s, &g, &gp);
+      q = 1 / PetscSqrtReal(L2);
+      if (ka) ka[e] = gp * q;
+      g *= q;
+      for (PetscInt r = 0; r < bs; r++) f[r] += g * xi[r];
+    }
+    if (pending)
+      for (PetscInt r = 0; r < bs; r++) f[r] += acc[r];
+    for (PetscInt r = 0; r < bs; r++) fr[bs * k + r] = f[r];
+  }
+  PetscCall(PetscLogEventEnd(PD_LOG.force, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 /* Energy of the bonds this rank counts: stored c (1 - d) s^2 |xi| / 2 (c s^2 |xi| / 2 in compression) and
    dissipated c |xi| (W(kappa) - (1 - d) kappa^2 / 2), W the law's envelope work. The |xi| turns the
    stretch integral into work for the standard stretch (ds = e.deta / |xi|); with the modified stretch

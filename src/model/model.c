@@ -1,5 +1,6 @@
 /* Model set-up: boundary conditions from node regions, measurement patterns, residual and Jacobian. */
 #include "pd_model.h"
+#include <petscbt.h>
 #include "kernel.h"
 #include <stdint.h>
 
@@ -335,6 +336,9 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
   PetscCall(PetscFree(m->ka));
   PetscCall(VecDestroy(&m->ka_u)); /* left by a static run that stopped on an error */
+  PetscCall(VecDestroy(&m->r_last));
+  PetscCall(PetscFree(m->changed));
+  PetscCall(PDModelRowIndexDestroy(m));
   PetscCall(PetscFree(m->kb));
   PetscCall(PetscFree(m->kp));
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
@@ -410,16 +414,72 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
   PetscFunctionReturn(0);
 }
 
+/* After a limiter grant the driver evaluates the residual again where it evaluated the last one: only the
+   rows of the nodes of the bonds the grant changed can differ. They are recomputed (in the whole loop's
+   order, so to the last bit) into a copy of the last residual, with the tangent scalars of their bonds.
+   *done is PETSC_FALSE where that does not hold and the whole loop must run. */
+static PetscErrorCode ResidualRowsAfterGrant(PDModel *m, Vec u, Vec R, PetscBool *done) {
+  const PetscInt     bs = m->bs, nowned = m->lat->nowned;
+  const PetscScalar *ul, *fr;
+  PetscScalar       *r, *fv;
+  PetscInt          *rows, n = 0;
+  PetscBT            mark;
+  Vec                uloc;
+  PetscBool          same = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *done               = PETSC_FALSE;
+  m->rows_after_grant = PETSC_FALSE;
+  if (!m->r_last || !m->ka_at_residual || m->nchanged < 0 || m->lambda != m->ka_lambda) PetscFunctionReturn(0);
+  PetscCall(VecEqual(u, m->ka_u, &same));
+  if (!same) PetscFunctionReturn(0);
+  PetscCall(PetscBTCreate(nowned, &mark));
+  PetscCall(PetscMalloc2(2 * m->nchanged + 1, &rows, bs * (2 * m->nchanged + 1), &fv));
+  for (PetscInt k = 0; k < m->nchanged; k++) {
+    const PetscInt ends[2] = {m->bonds->a[m->changed[k]], m->bonds->b[m->changed[k]]};
+    for (PetscInt t = 0; t < 2; t++)
+      if (ends[t] < nowned && !PetscBTLookupSet(mark, ends[t])) rows[n++] = ends[t];
+  }
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  PetscCall(PDModelInternalForceRows(m, ul, n, rows, fv, m->ka, done));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  if (*done) {
+    PetscCall(VecCopy(m->r_last, R));
+    PetscCall(VecGetArray(R, &r));
+    PetscCall(VecGetArrayRead(m->f_ref, &fr));
+    for (PetscInt k = 0; k < n; k++)
+      for (PetscInt c = 0; c < bs; c++) {
+        const PetscInt d = bs * rows[k] + c;
+        if (!m->fixed_local[d]) r[d] = fv[bs * k + c] - m->lambda * fr[d]; /* constrained rows depend on u alone */
+      }
+    PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
+    PetscCall(VecRestoreArray(R, &r));
+    PetscCall(VecCopy(R, m->r_last));
+  }
+  PetscCall(PetscFree2(rows, fv));
+  PetscCall(PetscBTDestroy(&mark));
+  PetscFunctionReturn(0);
+}
+
 /* R = F_int(u) - lambda F_ref on free dofs, bc_scale (u - lambda u_ref) on constrained ones. */
 PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
   PDModel           *m = (PDModel *)ctx;
   const PetscScalar *uu, *fr, *ur, *fx;
   PetscScalar       *r;
   PetscLogDouble     t0, t1;
+  PetscBool          rows = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   (void)snes;
   PetscCall(PetscTime(&t0));
+  if (m->rows_after_grant && m->ka_with_residual) PetscCall(ResidualRowsAfterGrant(m, u, R, &rows));
+  m->nchanged = 0;
+  if (rows) {
+    m->residuals_by_rows++;
+    PetscCall(PetscTime(&t1));
+    m->t_residual += t1 - t0;
+    PetscFunctionReturn(0);
+  }
   PetscCall(InternalForce(m, u, R, m->ka_with_residual));
   if (m->ka_with_residual) {
     if (!m->ka_u) PetscCall(VecDuplicate(u, &m->ka_u));
@@ -439,6 +499,10 @@ PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
   PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
   PetscCall(VecRestoreArrayRead(u, &uu));
   PetscCall(VecRestoreArray(R, &r));
+  if (m->track_grants) {
+    if (!m->r_last) PetscCall(VecDuplicate(R, &m->r_last));
+    PetscCall(VecCopy(R, m->r_last));
+  }
   PetscCall(PetscTime(&t1));
   m->t_residual += t1 - t0;
   PetscFunctionReturn(0);

@@ -74,6 +74,8 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   sc->tangent_product       = (PDTangentProduct)t;
   sc->tangent_with_residual = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_tangent_with_residual", &sc->tangent_with_residual, NULL));
+  sc->residual_rows = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_residual_rows", &sc->residual_rows, NULL));
   sc->diagonal_index = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_diagonal_index", &sc->diagonal_index, NULL));
   sc->limiter_max = -1; /* by bond count, PDModelLimiterCap */

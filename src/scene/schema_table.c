@@ -485,6 +485,12 @@ const PDOptionSpec PDOptionSchema[] = {
      .when = PD_WHEN_IMPLICIT,
      .help = "Newton's tangent scalars come from the residual's bond loop at the same displacement (load and displacement "
              "control); false: a bond loop of their own (docs/solvers.md)"},
+    {.name = "-pd_residual_rows",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_IMPLICIT,
+     .help = "After a limiter grant (load and displacement control), the residual at the same displacement recomputes only the rows "
+             "of the bonds the grant changed, equal to the whole loop's to the last bit; false: the whole bond loop (docs/solvers.md)"},
     {.name = "-pd_diagonal_index",
      .type = PD_OPTION_BOOL,
      .def  = "true",

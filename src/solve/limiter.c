@@ -33,6 +33,25 @@ static PetscReal Threshold(const PDModel *m, PetscInt e) {
   return PDLawNextThreshold(law, PDModelBondThresholds(m, e, law), m->level[e]);
 }
 
+/* A bond moves up one level; the static driver's next residual recomputes only the rows of such bonds
+   (model.c PDModelResidual), so they are recorded, up to an eighth of the bonds (beyond that a whole
+   evaluation costs about as much). */
+static PetscErrorCode Raise(PDModel *m, PetscInt e) {
+  PetscFunctionBeginUser;
+  m->level[e]++;
+  if (!m->track_grants || m->nchanged < 0) PetscFunctionReturn(0);
+  if (m->nchanged == m->changed_cap) {
+    if (m->changed_cap >= m->bonds->nbonds / 8) {
+      m->nchanged = -1;
+      PetscFunctionReturn(0);
+    }
+    m->changed_cap = PetscMax(256, 2 * m->changed_cap);
+    PetscCall(PetscRealloc(sizeof(PetscInt) * m->changed_cap, &m->changed));
+  }
+  m->changed[m->nchanged++] = e;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted) {
   const PDBonds   *bd   = m->bonds;
   const PDLattice *lat  = m->lat;
@@ -57,7 +76,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     s[e] /= Threshold(m, e);
     if (s[e] < 1) continue;
     if (law->kind != PD_LAW_LINEAR && m->level[e] >= PD_BOND_SOFTENING && m->level[e] < law->sublevels) {
-      m->level[e]++;
+      PetscCall(Raise(m, e));
       s[e] = 0;
       if (PDBondCountedHere(lat, bd, e)) nparts++;
     } else
@@ -82,7 +101,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   if (max_events == 0 || *ncandidates <= max_events) {
     /* every candidate goes: each rank decides its own copies alike, no exchange needed */
     for (PetscInt e = 0; e < bd->nbonds; e++)
-      if (s[e] >= 1) m->level[e]++;
+      if (s[e] >= 1) PetscCall(Raise(m, e));
     *granted = *ncandidates;
   } else {
     /* each rank's best max_events cover the global best max_events */
@@ -104,7 +123,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
       PetscInt64 id;
       if (s[e] < 1) continue;
       id = PDBondGlobalId(lat, bd, e);
-      if (bsearch(&id, ids, (size_t)max_events, sizeof(PetscInt64), CompareIds)) m->level[e]++;
+      if (bsearch(&id, ids, (size_t)max_events, sizeof(PetscInt64), CompareIds)) PetscCall(Raise(m, e));
     }
     *granted = max_events;
     PetscCall(PetscFree2(all, ids));

@@ -282,6 +282,7 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       break;
     }
     PetscCall(PDModelGrantEvents(m, u, m->limiter_max, &ncand, &granted));
+    m->rows_after_grant = granted && m->track_grants ? PETSC_TRUE : PETSC_FALSE;
     if (granted) {
       res->max_events = PetscMax(res->max_events, granted);
       if (++res->stages > PD_MAX_STAGES) {
@@ -334,7 +335,10 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   /* Newton asks for the tangent where it has just evaluated the residual, and nothing changes the bonds'
      history or levels inside a SNES solve: one bond loop gives both (PDModelResidual) */
   m->ka_with_residual = sc->tangent_with_residual && m->ka && !m->kp && !m->commit_history ? PETSC_TRUE : PETSC_FALSE;
-  rec->converged      = PETSC_TRUE;
+  /* and after a limiter grant, where SNES evaluates the residual again at the same displacement, only the
+     rows of the bonds the grant changed are recomputed (model.c PDModelResidual) */
+  m->track_grants = m->ka_with_residual && m->softening && sc->residual_rows ? PETSC_TRUE : PETSC_FALSE;
+  rec->converged  = PETSC_TRUE;
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   dl = PetscMin(dl, sc->dlambda_max);
   while (lambda_n < sc->lambda_max * (1 - 1e-12)) {
@@ -423,8 +427,9 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(PCGetType(pc, &pt));
     PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "%s/%s/%s", st, kt, pt));
   }
-  m->ka_with_residual = m->ka_at_residual = PETSC_FALSE;
+  m->ka_with_residual = m->ka_at_residual = m->track_grants = m->rows_after_grant = PETSC_FALSE;
   PetscCall(VecDestroy(&m->ka_u));
+  PetscCall(VecDestroy(&m->r_last));
   PetscCall(SNESDestroy(&snes));
   PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(VecDestroy(&u));
