@@ -6,7 +6,7 @@
 
 /* Where each local node's internal force gathers from in the bond arrays (kernel.c PDModelInternalForceRows) */
 typedef struct {
-  PetscBool ready;
+  PetscBool ready, usable;
   PetscInt *run_start, *run_end; /* [nlocal] the bonds the node starts */
   PetscInt *end_off, *end_bond;  /* CSR by node of the bonds that end at it, in bond order */
 } PDModelRowIndex;

@@ -185,21 +185,21 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
 }
 
 /* Where each node's contributions lie in the bond arrays: its run (the bonds it starts, contiguous) and
-   the bonds that end at it, in bond order. PETSC_FALSE if a node starts two runs (the rows below then
+   the bonds that end at it, in bond order. Not usable if a node starts two runs (the rows below then
    could not follow the whole loop's order). */
-static PetscErrorCode RowIndexSetUp(PDModel *m, PetscBool *ok) {
+static PetscErrorCode RowIndexSetUp(PDModel *m) {
   const PDBonds   *bd = m->bonds;
   const PetscInt   n  = m->lat->nlocal;
   PDModelRowIndex *ix = &m->rows;
   PetscInt        *fill;
 
   PetscFunctionBeginUser;
-  *ok = PETSC_TRUE;
+  ix->usable = PETSC_TRUE;
   PetscCall(PetscCalloc4(n, &ix->run_start, n, &ix->run_end, n + 1, &ix->end_off, PetscMax(1, bd->nbonds), &ix->end_bond));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e];
     if (e == 0 || bd->a[e - 1] != i) {
-      if (ix->run_end[i] > 0) *ok = PETSC_FALSE; /* a second run */
+      if (ix->run_end[i] > 0) ix->usable = PETSC_FALSE; /* a second run */
       ix->run_start[i] = e;
     }
     ix->run_end[i] = e + 1;
@@ -222,21 +222,30 @@ PetscErrorCode PDModelRowIndexDestroy(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
+/* Whether this rank's rows can be recomputed alone (PDModelInternalForceRows): small kinematics, and a
+   run per node. The index is built at the first call. */
+PetscErrorCode PDModelRowsUsable(PDModel *m, PetscBool *usable) {
+  PetscFunctionBeginUser;
+  *usable = PETSC_FALSE;
+  if (m->scene->kinematics == PD_KINEMATICS_FINITE) PetscFunctionReturn(0);
+  if (!m->rows.ready) PetscCall(RowIndexSetUp(m));
+  *usable = m->rows.usable;
+  PetscFunctionReturn(0);
+}
+
 /* Rows rows[0..n) of PDModelInternalForceLocal's f under small kinematics, into fr[bs k + r], with ka of
-   every bond they touch. Each row is summed as the whole loop sums it: the contributions of the bonds
-   ending at the node in bond order, its own run's sum where the run ends. So the rows equal the whole
-   loop's to the last bit, and a residual after a limiter grant recomputes only the rows of the bonds it
-   changed (model.c PDModelResidual). *ok is PETSC_FALSE where that order cannot be followed. */
-PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscInt n, const PetscInt *rows, PetscScalar *fr, PetscReal *ka,
-                                        PetscBool *ok) {
+   every bond they touch, where PDModelRowsUsable says so. Each row is summed as the whole loop sums it:
+   the contributions of the bonds ending at the node in bond order, its own run's sum where the run ends.
+   So the rows equal the whole loop's to the last bit, and a residual after a limiter grant recomputes
+   only the rows of the bonds it changed (model.c PDModelResidual). */
+PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscInt n, const PetscInt *rows, PetscScalar *fr,
+                                        PetscReal *ka) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
 
   PetscFunctionBeginUser;
-  *ok = m->scene->kinematics == PD_KINEMATICS_FINITE ? PETSC_FALSE : PETSC_TRUE;
-  if (*ok && !m->rows.ready) PetscCall(RowIndexSetUp(m, ok));
-  if (!*ok) PetscFunctionReturn(0);
+  PetscCheck(m->rows.ready && m->rows.usable, PETSC_COMM_SELF, PETSC_ERR_PLIB, "rows recomputed without a usable row index");
   PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
   for (PetscInt k = 0; k < n; k++) {
     const PetscInt i = rows[k], e0 = m->rows.run_start[i], e1 = m->rows.run_end[i];

@@ -43,8 +43,8 @@ static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *x
 #define PD_REGULARISATION 1e-8
 
 PetscErrorCode PDModelInternalForceLocal(PDModel *, const PetscScalar *u, PetscScalar *f, PetscReal *ka, PetscReal *kb);
-PetscErrorCode PDModelInternalForceRows(PDModel *, const PetscScalar *u, PetscInt n, const PetscInt *rows, PetscScalar *fr, PetscReal *ka,
-                                        PetscBool *ok);
+PetscErrorCode PDModelRowsUsable(PDModel *, PetscBool *usable);
+PetscErrorCode PDModelInternalForceRows(PDModel *, const PetscScalar *u, PetscInt n, const PetscInt *rows, PetscScalar *fr, PetscReal *ka);
 PetscErrorCode PDModelRowIndexDestroy(PDModel *);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,

@@ -425,12 +425,17 @@ static PetscErrorCode ResidualRowsAfterGrant(PDModel *m, Vec u, Vec R, PetscBool
   PetscInt          *rows, n = 0;
   PetscBT            mark;
   Vec                uloc;
-  PetscBool          same = PETSC_FALSE;
+  PetscBool          same = PETSC_FALSE, usable, all;
 
   PetscFunctionBeginUser;
   *done               = PETSC_FALSE;
   m->rows_after_grant = PETSC_FALSE;
-  if (!m->r_last || !m->ka_at_residual || m->nchanged < 0 || m->lambda != m->ka_lambda) PetscFunctionReturn(0);
+  if (!m->r_last || !m->ka_at_residual || m->lambda != m->ka_lambda) PetscFunctionReturn(0);
+  /* decided alike on every rank: the rows and the whole loop make different collective calls */
+  PetscCall(PDModelRowsUsable(m, &usable));
+  usable = usable && m->nchanged >= 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(MPIU_Allreduce(&usable, &all, 1, MPIU_BOOL, MPI_LAND, m->lat->comm));
+  if (!all) PetscFunctionReturn(0);
   PetscCall(VecEqual(u, m->ka_u, &same));
   if (!same) PetscFunctionReturn(0);
   PetscCall(PetscBTCreate(nowned, &mark));
@@ -441,21 +446,20 @@ static PetscErrorCode ResidualRowsAfterGrant(PDModel *m, Vec u, Vec R, PetscBool
       if (ends[t] < nowned && !PetscBTLookupSet(mark, ends[t])) rows[n++] = ends[t];
   }
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  PetscCall(PDModelInternalForceRows(m, ul, n, rows, fv, m->ka, done));
+  PetscCall(PDModelInternalForceRows(m, ul, n, rows, fv, m->ka));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
-  if (*done) {
-    PetscCall(VecCopy(m->r_last, R));
-    PetscCall(VecGetArray(R, &r));
-    PetscCall(VecGetArrayRead(m->f_ref, &fr));
-    for (PetscInt k = 0; k < n; k++)
-      for (PetscInt c = 0; c < bs; c++) {
-        const PetscInt d = bs * rows[k] + c;
-        if (!m->fixed_local[d]) r[d] = fv[bs * k + c] - m->lambda * fr[d]; /* constrained rows depend on u alone */
-      }
-    PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
-    PetscCall(VecRestoreArray(R, &r));
-    PetscCall(VecCopy(R, m->r_last));
-  }
+  *done = PETSC_TRUE;
+  PetscCall(VecCopy(m->r_last, R));
+  PetscCall(VecGetArray(R, &r));
+  PetscCall(VecGetArrayRead(m->f_ref, &fr));
+  for (PetscInt k = 0; k < n; k++)
+    for (PetscInt c = 0; c < bs; c++) {
+      const PetscInt d = bs * rows[k] + c;
+      if (!m->fixed_local[d]) r[d] = fv[bs * k + c] - m->lambda * fr[d]; /* constrained rows depend on u alone */
+    }
+  PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
+  PetscCall(VecRestoreArray(R, &r));
+  PetscCall(VecCopy(R, m->r_last));
   PetscCall(PetscFree2(rows, fv));
   PetscCall(PetscBTDestroy(&mark));
   PetscFunctionReturn(0);

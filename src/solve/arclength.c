@@ -47,10 +47,11 @@ typedef struct {
   PDModel       *m;
   Mat            J, P; /* the tangent (its product from the bond scalars, or P itself) and the assembled matrix of its preconditioner */
   KSP            ksp;
-  PetscReal      rtol, atol; /* Krylov tolerances of a solve with the tangent: 1e-8 and none, or -ksp_rtol and -ksp_atol */
-  PetscBool      matched;    /* linear tolerances matched to Newton's need (none given on the command line) */
-  PetscBool      floor_k;    /* and ksp measures the true residual: a corrector's solve stops at Newton's need */
-  PetscBool      floor_aug;  /* the same for the augmented corrector's solve */
+  PetscReal      rtol, atol;         /* Krylov tolerances of a solve with the tangent: 1e-8 and none, or -ksp_rtol and -ksp_atol */
+  PetscBool      matched;            /* linear tolerances matched to Newton's need (none given on the command line) */
+  PetscBool      floor_k;            /* and ksp measures the true residual: a corrector's solve stops at Newton's need */
+  PetscBool      floor_aug;          /* the same for the augmented corrector's solve */
+  PetscReal      rtol_aug, atol_aug; /* the augmented solve's own (-pd_augmented_ksp_rtol, or those of ksp) */
   Vec            u, fint, R, q, duI, v, w, dprev, row;
   Vec            v_n;       /* v at the last accepted step: the guess a restart starts from (-pd_arclength_guess) */
   PetscInt       totals[2]; /* the run's Newton and Krylov iterations at the last accepted step */
@@ -422,8 +423,8 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug, a->rtol));
     PetscCall(VecScale(a->R, -1));
     if (aug) {
-      PetscCall(
-          KSPSetTolerances(a->aug.ksp, a->rtol, a->floor_aug ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol, PETSC_DEFAULT, PETSC_DEFAULT));
+      PetscCall(KSPSetTolerances(a->aug.ksp, a->rtol_aug, a->floor_aug ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol_aug, PETSC_DEFAULT,
+                                 PETSC_DEFAULT));
       PetscCall(AugmentedUpdate(a, p, type, dl, PD_CORRECTOR_ATOL_SHARE * tol, &dlam, &n, &kr, &fine));
     } else {
       PetscCall(KSPSetTolerances(a->ksp, a->rtol, a->floor_k ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol, PETSC_DEFAULT, PETSC_DEFAULT));
@@ -712,6 +713,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     PetscCall(KSPGetPCSide(a.ksp, &side));
     a.floor_k = a.matched && side == PC_RIGHT ? PETSC_TRUE : PETSC_FALSE;
     if (a.augmented) {
+      PetscCall(KSPGetTolerances(a.aug.ksp, &a.rtol_aug, &a.atol_aug, NULL, NULL));
       PetscCall(KSPGetPCSide(a.aug.ksp, &side));
       a.floor_aug = a.matched && side == PC_RIGHT ? PETSC_TRUE : PETSC_FALSE;
     }
