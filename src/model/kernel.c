@@ -127,6 +127,17 @@ static inline PetscReal Projection(PetscInt bs, const PetscReal *x, const PetscS
   return dot;
 }
 
+/* Small kinematics: a bond's force over its length, g(s) / |xi| with s = dot / |xi|^2, and its tangent
+   scalar into *ka (if given). The residual's loop and its rows (PDModelInternalForceRows) share it, so
+   both evaluate the same expressions in the same order. */
+static inline PetscReal SmallForce(const PDModel *m, PetscInt e, PetscReal dot, PetscReal L2, PetscReal *ka) {
+  PetscReal g, gp, q;
+  BondForce(m, e, dot / L2, &g, &gp);
+  q = 1 / PetscSqrtReal(L2);
+  if (ka) *ka = gp * q;
+  return g * q;
+}
+
 /* Internal forces f at u and, where ka is given, the tangent scalars at u as PDModelTangentScalars
    computes them (without kp): the residual and the tangent of one Newton iteration share the bond
    loop. */
@@ -146,14 +157,11 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
     PetscReal xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
     for (PetscInt e = 0; e < bd->nbonds; e++) {
       const PetscInt i = bd->a[e], j = bd->b[e];
-      PetscReal      xi[3], L2, s, q, g, gp;
+      PetscReal      xi[3], L2, dot, g;
       if (i != cur) RunStart(bs, lat->x, u, f, i, &cur, xc, uc, acc);
-      s = Projection(bs, lat->x, u, j, xc, uc, xi, &L2) / L2;
-      BondForce(m, e, s, &g, &gp);
-      q = 1 / PetscSqrtReal(L2);
-      if (ka) ka[e] = gp * q; /* kb is NULL under small kinematics */
-      if (m->commit_history) PDModelCommitBond(m, e, s);
-      g *= q;
+      dot = Projection(bs, lat->x, u, j, xc, uc, xi, &L2);
+      g   = SmallForce(m, e, dot, L2, ka ? &ka[e] : NULL); /* kb is NULL under small kinematics */
+      if (m->commit_history) PDModelCommitBond(m, e, dot / L2);
       for (PetscInt r = 0; r < bs; r++) {
         acc[r] -= g * xi[r];
         f[bs * j + r] += g * xi[r];
@@ -256,17 +264,14 @@ PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscI
       uc[r] = PetscRealPart(u[bs * i + r]);
     }
     for (PetscInt e = e0; e < e1; e++) { /* the run's sum, as the whole loop forms it */
-      PetscReal xi[3], L2, s, q, g, gp;
-      s = Projection(bs, lat->x, u, bd->b[e], xc, uc, xi, &L2) / L2;
-      BondForce(m, e, s, &g, &gp);
-      q = 1 / PetscSqrtReal(L2);
-      if (ka) ka[e] = gp * q;
-      g *= q;
+      PetscReal xi[3], L2, dot, g;
+      dot = Projection(bs, lat->x, u, bd->b[e], xc, uc, xi, &L2);
+      g   = SmallForce(m, e, dot, L2, ka ? &ka[e] : NULL);
       for (PetscInt r = 0; r < bs; r++) acc[r] -= g * xi[r];
     }
     for (PetscInt t = m->rows.end_off[i]; t < m->rows.end_off[i + 1]; t++) {
       const PetscInt e = m->rows.end_bond[t], a = bd->a[e];
-      PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2, s, q, g, gp;
+      PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2, dot, g;
       if (pending && e >= e1) {
         for (PetscInt r = 0; r < bs; r++) f[r] += acc[r];
         pending = PETSC_FALSE;
@@ -275,11 +280,8 @@ PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscI
         xa[r] = lat->x[3 * a + r];
         ua[r] = PetscRealPart(u[bs * a + r]);
       }
-      s = Projection(bs, lat->x, u, i, xa, ua, xi, &L2) / L2;
-      BondForce(m, e, s, &g, &gp);
-      q = 1 / PetscSqrtReal(L2);
-      if (ka) ka[e] = gp * q;
-      g *= q;
+      dot = Projection(bs, lat->x, u, i, xa, ua, xi, &L2);
+      g   = SmallForce(m, e, dot, L2, ka ? &ka[e] : NULL);
       for (PetscInt r = 0; r < bs; r++) f[r] += g * xi[r];
     }
     if (pending)

@@ -449,8 +449,8 @@ static PetscErrorCode ResidualRowsAfterGrant(PDModel *m, Vec u, Vec R, PetscBool
   PetscCall(PDModelInternalForceRows(m, ul, n, rows, fv, m->ka));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   *done = PETSC_TRUE;
-  PetscCall(VecCopy(m->r_last, R));
-  PetscCall(VecGetArray(R, &r));
+  /* the rows into the last residual, which then is this one */
+  PetscCall(VecGetArray(m->r_last, &r));
   PetscCall(VecGetArrayRead(m->f_ref, &fr));
   for (PetscInt k = 0; k < n; k++)
     for (PetscInt c = 0; c < bs; c++) {
@@ -458,8 +458,8 @@ static PetscErrorCode ResidualRowsAfterGrant(PDModel *m, Vec u, Vec R, PetscBool
       if (!m->fixed_local[d]) r[d] = fv[bs * k + c] - m->lambda * fr[d]; /* constrained rows depend on u alone */
     }
   PetscCall(VecRestoreArrayRead(m->f_ref, &fr));
-  PetscCall(VecRestoreArray(R, &r));
-  PetscCall(VecCopy(R, m->r_last));
+  PetscCall(VecRestoreArray(m->r_last, &r));
+  PetscCall(VecCopy(m->r_last, R));
   PetscCall(PetscFree2(rows, fv));
   PetscCall(PetscBTDestroy(&mark));
   PetscFunctionReturn(0);
