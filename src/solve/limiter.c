@@ -239,6 +239,7 @@ PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped, PetscI
 PetscErrorCode PDModelRestoreLevels(PDModel *m) {
   PetscFunctionBeginUser;
   if (m->softening) PetscCall(PetscArraycpy(m->level, m->level_n, m->bonds->nbonds));
+  m->nchanged = -1; /* levels changed without a record: the next residual runs the whole loop */
   PetscFunctionReturn(0);
 }
 
