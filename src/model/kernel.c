@@ -138,6 +138,28 @@ static inline PetscReal SmallForce(const PDModel *m, PetscInt e, PetscReal dot, 
   return g * q;
 }
 
+/* Small kinematics, as the tangent's product (TangentApplySmall): the stretch needs no square root, so
+   the law's evaluation does not wait for one, and 1/|xi| scales the force at the end. */
+static inline void InternalForceSmall(PetscInt bs, PDModel *m, const PetscReal *restrict x, const PetscScalar *restrict u,
+                                      PetscScalar *restrict f, PetscReal *restrict ka) {
+  const PDBonds *bd    = m->bonds;
+  PetscInt       cur   = -1;
+  PetscReal      xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e];
+    PetscReal      xi[3], L2, dot, g;
+    if (i != cur) RunStart(bs, x, u, f, i, &cur, xc, uc, acc);
+    dot = Projection(bs, x, u, j, xc, uc, xi, &L2);
+    g   = SmallForce(m, e, dot, L2, ka ? &ka[e] : NULL);
+    if (m->commit_history) PDModelCommitBond(m, e, dot / L2);
+    for (PetscInt r = 0; r < bs; r++) {
+      acc[r] -= g * xi[r];
+      f[bs * j + r] += g * xi[r];
+    }
+  }
+  for (PetscInt r = 0; r < bs && cur >= 0; r++) f[bs * cur + r] += acc[r];
+}
+
 /* Internal forces f at u and, where ka is given, the tangent scalars at u as PDModelTangentScalars
    computes them (without kp): the residual and the tangent of one Newton iteration share the bond
    loop. */
@@ -151,23 +173,10 @@ PetscErrorCode PDModelInternalForceLocal(PDModel *m, const PetscScalar *u, Petsc
   PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
   PetscCall(PetscArrayzero(f, bs * lat->nlocal));
   if (!geometric) {
-    /* small kinematics, as the tangent's product (PDModelTangentApplyLocal): the stretch needs no square
-       root, so the law's evaluation does not wait for one, and 1/|xi| scales the force at the end */
-    PetscInt  cur   = -1;
-    PetscReal xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
-    for (PetscInt e = 0; e < bd->nbonds; e++) {
-      const PetscInt i = bd->a[e], j = bd->b[e];
-      PetscReal      xi[3], L2, dot, g;
-      if (i != cur) RunStart(bs, lat->x, u, f, i, &cur, xc, uc, acc);
-      dot = Projection(bs, lat->x, u, j, xc, uc, xi, &L2);
-      g   = SmallForce(m, e, dot, L2, ka ? &ka[e] : NULL); /* kb is NULL under small kinematics */
-      if (m->commit_history) PDModelCommitBond(m, e, dot / L2);
-      for (PetscInt r = 0; r < bs; r++) {
-        acc[r] -= g * xi[r];
-        f[bs * j + r] += g * xi[r];
-      }
-    }
-    for (PetscInt r = 0; r < bs && cur >= 0; r++) f[bs * cur + r] += acc[r];
+    if (bs == 3)
+      InternalForceSmall(3, m, lat->x, u, f, ka); /* kb is NULL under small kinematics */
+    else
+      InternalForceSmall(bs, m, lat->x, u, f, ka);
     PetscCall(PetscLogFlops(30.0 * bd->nbonds));
     PetscCall(PetscLogEventEnd(PD_LOG.force, 0, 0, 0, 0));
     PetscFunctionReturn(0);
@@ -366,6 +375,30 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
    micromodulus; kb NULL: small kinematics). Under small kinematics B = ka xi xi^T / |xi|^2 needs neither
    u (which may be NULL) nor a square root, and a node's row is summed over its run of bonds (RunStart).
    This is the Krylov solves' operator (tangent_product.c). */
+/* Small kinematics: y += K x from the tangent scalars ka (NULL: the elastic ones). The loops of the
+   product, the residual and the stretches are inline functions of the dofs per node, called with a
+   literal 3 in 3D: Krylov solves and multigrid's finest smoother spend most of their time in the product,
+   and a loop over a count known only at run time keeps the compiler from unrolling it. Both copies
+   evaluate the same expressions in the same order. */
+static inline void TangentApplySmall(PetscInt bs, const PDBonds *bd, const PetscReal *restrict x, const PetscReal *restrict ka,
+                                     const PetscScalar *restrict v, PetscScalar *restrict y) {
+  const PetscInt *restrict a = bd->a, *restrict b = bd->b;
+  PetscInt  cur   = -1;
+  PetscReal xc[3] = {0, 0, 0}, vc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = a[e], j = b[e];
+    PetscReal      xi[3], L2, dot, t;
+    if (i != cur) RunStart(bs, x, v, y, i, &cur, xc, vc, acc);
+    dot = Projection(bs, x, v, j, xc, vc, xi, &L2);
+    t   = (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
+    for (PetscInt r = 0; r < bs; r++) {
+      acc[r] -= t * xi[r];
+      y[bs * j + r] += t * xi[r];
+    }
+  }
+  for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
+}
+
 PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
                                         PetscScalar *y) {
   const PDBonds   *bd  = m->bonds;
@@ -375,20 +408,10 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(y, bs * lat->nlocal));
   if (m->scene->kinematics == PD_KINEMATICS_SMALL) {
-    PetscInt  cur   = -1;
-    PetscReal xc[3] = {0, 0, 0}, vc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
-    for (PetscInt e = 0; e < bd->nbonds; e++) {
-      const PetscInt i = bd->a[e], j = bd->b[e];
-      PetscReal      xi[3], L2, dot, t;
-      if (i != cur) RunStart(bs, lat->x, x, y, i, &cur, xc, vc, acc);
-      dot = Projection(bs, lat->x, x, j, xc, vc, xi, &L2);
-      t   = (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
-      for (PetscInt r = 0; r < bs; r++) {
-        acc[r] -= t * xi[r];
-        y[bs * j + r] += t * xi[r];
-      }
-    }
-    for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
+    if (bs == 3)
+      TangentApplySmall(3, bd, lat->x, ka, x, y);
+    else
+      TangentApplySmall(bs, bd, lat->x, ka, x, y);
     PetscCall(PetscLogFlops((bs == 3 ? 25.0 : 18.0) * bd->nbonds));
     PetscFunctionReturn(0);
   }
@@ -410,22 +433,31 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
   PetscFunctionReturn(0);
 }
 
+/* Small kinematics: BondState's stretch, without the length it has no use for. */
+static inline void StretchesSmall(PetscInt bs, const PDBonds *bd, const PetscReal *restrict x, const PetscScalar *restrict u,
+                                  PetscReal *restrict s) {
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt a     = bd->a[e];
+    PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2;
+    for (PetscInt r = 0; r < bs; r++) {
+      xa[r] = x[3 * a + r];
+      ua[r] = PetscRealPart(u[bs * a + r]);
+    }
+    s[e] = Projection(bs, x, u, bd->b[e], xa, ua, xi, &L2) / L2;
+  }
+}
+
 /* Stretch of every bond at u, for the limiter and the history update. */
 PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
 
   PetscFunctionBeginUser;
-  if (m->scene->kinematics == PD_KINEMATICS_SMALL) { /* BondState's stretch, without the length it has no use for */
-    for (PetscInt e = 0; e < bd->nbonds; e++) {
-      const PetscInt a     = bd->a[e];
-      PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2;
-      for (PetscInt r = 0; r < m->bs; r++) {
-        xa[r] = lat->x[3 * a + r];
-        ua[r] = PetscRealPart(u[m->bs * a + r]);
-      }
-      s[e] = Projection(m->bs, lat->x, u, bd->b[e], xa, ua, xi, &L2) / L2;
-    }
+  if (m->scene->kinematics == PD_KINEMATICS_SMALL) {
+    if (m->bs == 3)
+      StretchesSmall(3, bd, lat->x, u, s);
+    else
+      StretchesSmall(m->bs, bd, lat->x, u, s);
     PetscFunctionReturn(0);
   }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
