@@ -35,6 +35,7 @@ typedef struct {
   PetscBool due;        /* rebuild at the next assembly */
   PetscBool measure;    /* the next solve is the first after a rebuild */
   PetscInt  assemblies; /* since the last rebuild, for the fixed lag */
+  PetscReal fnorm;      /* under SNES: the last residual norm its monitor saw */
 } PDPCRefresh;
 
 /* The policy follows ksp's preconditioner, set from the options already. */

@@ -26,7 +26,8 @@
 #define PD_STALE_FACTOR 2.0
 #define PD_STALE_SLACK 4.0
 
-PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
+/* bnorm: the norm of the solve's right-hand side */
+static PetscErrorCode Measure(PDPCRefresh *r, KSP ksp, PetscReal bnorm, PetscBool *again) {
   PetscInt           its;
   PetscReal          rtol, atol, decades, per_decade;
   KSPConvergedReason reason;
@@ -43,13 +44,8 @@ PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
      nothing, unless it failed */
   if (guess && reason >= 0) PetscFunctionReturn(0);
   decades = -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON));
-  if (reason == KSP_CONVERGED_ATOL) { /* stopped at the drivers' floor (a true residual, from a zero guess) */
-    Vec       b;
-    PetscReal bnorm;
-    PetscCall(KSPGetRhs(ksp, &b));
-    PetscCall(VecNorm(b, NORM_2, &bnorm));
+  if (reason == KSP_CONVERGED_ATOL) /* stopped at the drivers' floor (a true residual, from a zero guess) */
     decades = PetscLog10Real(PetscMax(bnorm / atol, 1.0));
-  }
   per_decade = its / PetscMax(1.0, decades);
   if (r->measure) { /* the first solve with a fresh preconditioner */
     r->fresh   = per_decade;
@@ -63,16 +59,31 @@ PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
   PetscFunctionReturn(0);
 }
 
-/* SNES keeps KSP's pre- and post-solve hooks for Eisenstat-Walker, so under SNES the solve is measured
-   from a monitor, which runs after each Newton update (iteration 0 is the start, after no solve) */
-static PetscErrorCode MonitorSolve(SNES snes, PetscInt it, PetscReal fnorm, void *ctx) {
-  KSP ksp;
+PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
+  Vec       b;
+  PetscReal bnorm;
 
   PetscFunctionBeginUser;
-  (void)fnorm;
-  if (it == 0) PetscFunctionReturn(0);
-  PetscCall(SNESGetKSP(snes, &ksp));
-  PetscCall(PDPCRefreshSolved((PDPCRefresh *)ctx, ksp, NULL));
+  PetscCall(KSPGetRhs(ksp, &b));
+  PetscCall(VecNorm(b, NORM_2, &bnorm));
+  PetscCall(Measure(r, ksp, bnorm, again));
+  PetscFunctionReturn(0);
+}
+
+/* SNES keeps KSP's pre- and post-solve hooks for Eisenstat-Walker, so under SNES the solve is measured
+   from a monitor, which runs after each Newton update (iteration 0 is the start, after no solve). By then
+   the residual vector the solve had as its right-hand side holds the new residual: the right-hand side's
+   norm is the residual norm the monitor saw one iteration before. */
+static PetscErrorCode MonitorSolve(SNES snes, PetscInt it, PetscReal fnorm, void *ctx) {
+  PDPCRefresh *r = (PDPCRefresh *)ctx;
+  KSP          ksp;
+
+  PetscFunctionBeginUser;
+  if (it > 0) {
+    PetscCall(SNESGetKSP(snes, &ksp));
+    PetscCall(Measure(r, ksp, r->fnorm, NULL));
+  }
+  r->fnorm = fnorm;
   PetscFunctionReturn(0);
 }
 
