@@ -123,7 +123,8 @@ PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, Pe
 PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscInt *nkink);
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
-PetscErrorCode PDModelTangentApplyScalars(PDModel *, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool eliminate, Vec x, Vec y);
+PetscErrorCode PDModelTangentApplyScalars(PDModel *, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled, PetscBool eliminate,
+                                          Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);
 PetscErrorCode PDModelElasticApply(PDModel *, Vec x, Vec y);
 PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);

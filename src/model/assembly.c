@@ -5,12 +5,13 @@
 #include "pd_log.h"
 
 /* What a matrix holds, composed on it: the tangent scalar ka each bond's blocks were last assembled with,
-   and the dofs each row regularised. Under small kinematics a bond's block depends on the state through
+   over the bond's squared length (the factor of xi xi^T in its block, which the matrix-free product
+   multiplies by without a division), and the dofs each row regularised. Under small kinematics a bond's block depends on the state through
    ka alone, and only the bonds of a softening band change it between Newton iterations: a later
    assembly rewrites the rows of the nodes one of whose bonds changed, and leaves the others as they are
    (docs/solvers.md "Assembly"). */
 typedef struct {
-  PetscReal     *ka;     /* [nbonds] */
+  PetscReal     *kl;     /* [nbonds] ka / |xi|^2, or -1 for the micromodulus */
   unsigned char *reg;    /* [nowned] dofs of the row given the regularising diagonal, bit r for dof r */
   PetscInt       maxrow; /* blocks in the longest row */
 } PDAssembled;
@@ -19,7 +20,7 @@ static PetscErrorCode AssembledDestroy(void *ctx) {
   PDAssembled *rec = (PDAssembled *)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscFree2(rec->ka, rec->reg));
+  PetscCall(PetscFree2(rec->kl, rec->reg));
   PetscCall(PetscFree(rec));
   PetscFunctionReturn(0);
 }
@@ -36,7 +37,7 @@ static PetscErrorCode AssembledGet(PDModel *m, Mat J, PDAssembled **rec, PetscBo
     PetscFunctionReturn(0);
   }
   PetscCall(PetscNew(rec));
-  PetscCall(PetscMalloc2(PetscMax(1, m->bonds->nbonds), &(*rec)->ka, PetscMax(1, m->lat->nowned), &(*rec)->reg));
+  PetscCall(PetscMalloc2(PetscMax(1, m->bonds->nbonds), &(*rec)->kl, PetscMax(1, m->lat->nowned), &(*rec)->reg));
   for (PetscInt i = 0; i < m->lat->nowned; i++)
     (*rec)->maxrow = PetscMax((*rec)->maxrow, m->bonds->inc_start[i + 1] - m->bonds->inc_start[i] + 1);
   PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)J), &c));
@@ -126,9 +127,10 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscCall(PetscMalloc1(PetscMax(1, lat->nowned), &due));
   for (PetscInt i = 0; i < lat->nowned; i++) due[i] = every;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscReal a = ka ? ka[e] : -1; /* -1: the micromodulus, never a stored ka of this matrix */
-    if (!every && a == rec->ka[e]) continue;
-    rec->ka[e] = a;
+    /* -1: the micromodulus, never a stored value of this matrix */
+    const PetscReal a = ka ? ka[e] / PDBondLength2(bs, lat->x, bd->a[e], bd->b[e]) : -1;
+    if (!every && a == rec->kl[e]) continue;
+    rec->kl[e] = a;
     if (bd->a[e] < lat->nowned) due[bd->a[e]] = PETSC_TRUE;
     if (bd->b[e] < lat->nowned) due[bd->b[e]] = PETSC_TRUE;
   }
@@ -156,19 +158,19 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* What P was last assembled with: each bond's ka and each owned row's regularised dofs (NULL before the
-   first assembly). Read by the matrix-free product of the same matrix (tangent_product.c). */
-PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **ka, const unsigned char **reg) {
+/* What P was last assembled with: each bond's ka / |xi|^2 and each owned row's regularised dofs (NULL
+   before the first assembly). Read by the matrix-free product of the same matrix (tangent_product.c). */
+PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg) {
   PetscContainer c;
   PDAssembled   *rec;
 
   PetscFunctionBeginUser;
-  *ka  = NULL;
+  *kl  = NULL;
   *reg = NULL;
   PetscCall(PetscObjectQuery((PetscObject)P, "PDAssembled", (PetscObject *)&c));
   if (!c) PetscFunctionReturn(0);
   PetscCall(PetscContainerGetPointer(c, (void **)&rec));
-  *ka  = rec->ka;
+  *kl  = rec->kl;
   *reg = rec->reg;
   PetscFunctionReturn(0);
 }

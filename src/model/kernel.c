@@ -380,8 +380,8 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
    literal 3 in 3D: Krylov solves and multigrid's finest smoother spend most of their time in the product,
    and a loop over a count known only at run time keeps the compiler from unrolling it. Both copies
    evaluate the same expressions in the same order. */
-static inline void TangentApplySmall(PetscInt bs, const PDBonds *bd, const PetscReal *restrict x, const PetscReal *restrict ka,
-                                     const PetscScalar *restrict v, PetscScalar *restrict y) {
+static inline void TangentApplySmall(PetscInt bs, PetscBool scaled, const PDBonds *bd, const PetscReal *restrict x,
+                                     const PetscReal *restrict ka, const PetscScalar *restrict v, PetscScalar *restrict y) {
   const PetscInt *restrict a = bd->a, *restrict b = bd->b;
   PetscInt  cur   = -1;
   PetscReal xc[3] = {0, 0, 0}, vc[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
@@ -390,7 +390,7 @@ static inline void TangentApplySmall(PetscInt bs, const PDBonds *bd, const Petsc
     PetscReal      xi[3], L2, dot, t;
     if (i != cur) RunStart(bs, x, v, y, i, &cur, xc, vc, acc);
     dot = Projection(bs, x, v, j, xc, vc, xi, &L2);
-    t   = (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
+    t   = scaled ? ka[e] * dot : (ka ? ka[e] : PDBondStiffness(bd, e) / PetscSqrtReal(L2)) * dot / L2;
     for (PetscInt r = 0; r < bs; r++) {
       acc[r] -= t * xi[r];
       y[bs * j + r] += t * xi[r];
@@ -399,8 +399,8 @@ static inline void TangentApplySmall(PetscInt bs, const PDBonds *bd, const Petsc
   for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
 }
 
-PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
-                                        PetscScalar *y) {
+PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
+                                        const PetscScalar *x, PetscScalar *y) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
@@ -408,10 +408,12 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
   PetscFunctionBeginUser;
   PetscCall(PetscArrayzero(y, bs * lat->nlocal));
   if (m->scene->kinematics == PD_KINEMATICS_SMALL) {
-    if (bs == 3)
-      TangentApplySmall(3, bd, lat->x, ka, x, y);
+    if (bs == 3 && scaled)
+      TangentApplySmall(3, PETSC_TRUE, bd, lat->x, ka, x, y);
+    else if (bs == 3)
+      TangentApplySmall(3, PETSC_FALSE, bd, lat->x, ka, x, y);
     else
-      TangentApplySmall(bs, bd, lat->x, ka, x, y);
+      TangentApplySmall(bs, scaled, bd, lat->x, ka, x, y);
     PetscCall(PetscLogFlops((bs == 3 ? 25.0 : 18.0) * bd->nbonds));
     PetscFunctionReturn(0);
   }

@@ -39,6 +39,16 @@ static inline void BondState(const PDScene *sc, PetscInt dim, const PetscReal *x
   }
 }
 
+/* A bond's squared reference length, summed as the bond loops sum it (bs dofs per node, coordinates by 3). */
+static inline PetscReal PDBondLength2(PetscInt bs, const PetscReal *x, PetscInt i, PetscInt j) {
+  PetscReal L2 = 0;
+  for (PetscInt r = 0; r < bs; r++) {
+    const PetscReal d = x[3 * j + r] - x[3 * i + r];
+    L2 += d * d;
+  }
+  return L2;
+}
+
 /* Diagonal added, times bc_scale, to a free dof left without stiffness (every bond of its node broken). */
 #define PD_REGULARISATION 1e-8
 
@@ -49,10 +59,11 @@ PetscErrorCode PDModelRowIndexDestroy(PDModel *);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
-PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **ka, const unsigned char **reg);
+PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg);
 PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
-PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, const PetscScalar *x,
-                                        PetscScalar *y);
+/* scaled: ka holds ka / |xi|^2 (small kinematics, kb NULL) */
+PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
+                                        const PetscScalar *x, PetscScalar *y);
 PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
 void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);

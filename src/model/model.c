@@ -593,10 +593,12 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
   PetscFunctionReturn(0);
 }
 
-/* y = K x on every owned dof from the bond scalars ka, kb at u (PDModelTangentApplyLocal; u NULL: at rest).
+/* y = K x on every owned dof from the bond scalars ka, kb at u (PDModelTangentApplyLocal; u NULL: at rest;
+   scaled: ka holds ka / |xi|^2, small kinematics).
    With eliminate, constrained columns take no part: their entries of x count as zero. The displacement
    is gathered only under finite kinematics, where a bond's direction follows it. */
-PetscErrorCode PDModelTangentApplyScalars(PDModel *m, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool eliminate, Vec x, Vec y) {
+PetscErrorCode PDModelTangentApplyScalars(PDModel *m, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
+                                          PetscBool eliminate, Vec x, Vec y) {
   const PetscScalar *ul     = NULL;
   const PetscBool    finite = m->scene->kinematics == PD_KINEMATICS_FINITE ? PETSC_TRUE : PETSC_FALSE;
   PetscScalar       *xl, *yl, *yy;
@@ -620,7 +622,7 @@ PetscErrorCode PDModelTangentApplyScalars(PDModel *m, Vec u, const PetscReal *ka
   PetscCall(VecGetArray(yloc, &yl));
   for (PetscInt k = 0; eliminate && k < m->bs * m->lat->nlocal; k++)
     if (m->fixed_local[k]) xl[k] = 0;
-  PetscCall(PDModelTangentApplyLocal(m, ul, ka, kb, xl, yl));
+  PetscCall(PDModelTangentApplyLocal(m, ul, ka, kb, scaled, xl, yl));
   PetscCall(VecGetArray(y, &yy));
   PetscCall(PetscArraycpy(yy, yl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
   PetscCall(VecRestoreArray(y, &yy));
@@ -643,7 +645,7 @@ static PetscErrorCode TangentApply(PDModel *m, Vec u, Vec x, Vec y, PetscBool re
     PetscCall(PDModelTangentScalars(m, ul, m->ka, m->kb, NULL));
     PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   }
-  PetscCall(PDModelTangentApplyScalars(m, u, u ? m->ka : NULL, u ? m->kb : NULL, PETSC_FALSE, x, y));
+  PetscCall(PDModelTangentApplyScalars(m, u, u ? m->ka : NULL, u ? m->kb : NULL, PETSC_FALSE, PETSC_FALSE, x, y));
   PetscFunctionReturn(0);
 }
 

@@ -3,7 +3,8 @@
    the two node ids, where a mat-vec of the assembled tangent streams two 3 x 3 blocks and their column
    indices (about 220 bytes per bond in AIJ). Krylov solves and multigrid's finest smoother are bound by
    that traffic (docs/benchmarks/solve_profile.md); the assembled matrix stays the preconditioner's.
-   The product is that of the assembled matrix P: it reads the ka P's rows were last assembled with and
+   The product is that of the assembled matrix P: it reads the ka / |xi|^2 P's rows were last assembled with
+   (a multiplication per bond where the division by |xi|^2 made the loop wait) and
    the dofs P regularised (assembly.c), and eliminates constrained dofs as P does. The bond loop is
    PDModelTangentApplyLocal (kernel.c), which path following's products share. */
 #include "pd_model.h"
@@ -18,7 +19,7 @@ typedef struct {
 static PetscErrorCode Mult(Mat A, Vec x, Vec y) {
   TangentProduct      *tp;
   PDModel             *m;
-  const PetscReal     *ka;
+  const PetscReal     *kl;
   const unsigned char *reg;
   const PetscScalar   *xx;
   PetscScalar         *yy;
@@ -26,10 +27,10 @@ static PetscErrorCode Mult(Mat A, Vec x, Vec y) {
   PetscFunctionBeginUser;
   PetscCall(MatShellGetContext(A, &tp));
   m = tp->m;
-  PetscCall(PDModelAssembledState(tp->P, &ka, &reg));
-  PetscCheck(ka, PetscObjectComm((PetscObject)A), PETSC_ERR_ORDER, "The tangent product needs an assembled matrix");
+  PetscCall(PDModelAssembledState(tp->P, &kl, &reg));
+  PetscCheck(kl, PetscObjectComm((PetscObject)A), PETSC_ERR_ORDER, "The tangent product needs an assembled matrix");
   PetscCall(PetscLogEventBegin(PD_LOG.product, A, x, y, 0));
-  PetscCall(PDModelTangentApplyScalars(m, NULL, ka, NULL, PETSC_TRUE, x, y));
+  PetscCall(PDModelTangentApplyScalars(m, NULL, kl, NULL, PETSC_TRUE, PETSC_TRUE, x, y));
   /* constrained rows are bc_scale on the diagonal, and a free dof without stiffness has the regularising
      diagonal P was given */
   PetscCall(VecGetArrayRead(x, &xx));
