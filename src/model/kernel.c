@@ -370,12 +370,8 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
   PetscFunctionReturn(0);
 }
 
-/* y = K x from the bond scalars, on every dof (no elimination of constrained ones): per bond the block
-   B = ka e e^T + kb I acts on x_j - x_i, +B on node j and -B on node i (ka NULL: the linearised
-   micromodulus; kb NULL: small kinematics). Under small kinematics B = ka xi xi^T / |xi|^2 needs neither
-   u (which may be NULL) nor a square root, and a node's row is summed over its run of bonds (RunStart).
-   This is the Krylov solves' operator (tangent_product.c). */
-/* Small kinematics: y += K x from the tangent scalars ka (NULL: the elastic ones). The loops of the
+/* Small kinematics: y += K x from the tangent scalars ka (NULL: the elastic ones; scaled: ka / |xi|^2,
+   which spares the loop its division). The loops of the
    product, the residual and the stretches are inline functions of the dofs per node, called with a
    literal 3 in 3D: Krylov solves and multigrid's finest smoother spend most of their time in the product,
    and a loop over a count known only at run time keeps the compiler from unrolling it. Both copies
@@ -399,6 +395,11 @@ static inline void TangentApplySmall(PetscInt bs, PetscBool scaled, const PDBond
   for (PetscInt r = 0; r < bs && cur >= 0; r++) y[bs * cur + r] += acc[r];
 }
 
+/* y = K x from the bond scalars, on every dof (no elimination of constrained ones): per bond the block
+   B = ka e e^T + kb I acts on x_j - x_i, +B on node j and -B on node i (ka NULL: the linearised
+   micromodulus; kb NULL: small kinematics). Under small kinematics B = ka xi xi^T / |xi|^2 needs neither
+   u (which may be NULL) nor a square root, and a node's row is summed over its run of bonds (RunStart).
+   This is the Krylov solves' operator (tangent_product.c). */
 PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
                                         const PetscScalar *x, PetscScalar *y) {
   const PDBonds   *bd  = m->bonds;

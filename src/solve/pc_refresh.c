@@ -26,8 +26,8 @@
 #define PD_STALE_FACTOR 2.0
 #define PD_STALE_SLACK 4.0
 
-/* bnorm: the norm of the solve's right-hand side */
-static PetscErrorCode Measure(PDPCRefresh *r, KSP ksp, PetscReal bnorm, PetscBool *again) {
+/* bnorm: the norm of the solve's right-hand side, or NULL to read it from the KSP where it is needed */
+static PetscErrorCode Measure(PDPCRefresh *r, KSP ksp, const PetscReal *bnorm, PetscBool *again) {
   PetscInt           its;
   PetscReal          rtol, atol, decades, per_decade;
   KSPConvergedReason reason;
@@ -44,8 +44,15 @@ static PetscErrorCode Measure(PDPCRefresh *r, KSP ksp, PetscReal bnorm, PetscBoo
      nothing, unless it failed */
   if (guess && reason >= 0) PetscFunctionReturn(0);
   decades = -PetscLog10Real(PetscMax(rtol, PETSC_MACHINE_EPSILON));
-  if (reason == KSP_CONVERGED_ATOL) /* stopped at the drivers' floor (a true residual, from a zero guess) */
-    decades = PetscLog10Real(PetscMax(bnorm / atol, 1.0));
+  if (reason == KSP_CONVERGED_ATOL) { /* stopped at the drivers' floor (a true residual, from a zero guess) */
+    PetscReal b = bnorm ? *bnorm : 0;
+    if (!bnorm) {
+      Vec rhs;
+      PetscCall(KSPGetRhs(ksp, &rhs));
+      PetscCall(VecNorm(rhs, NORM_2, &b));
+    }
+    decades = PetscLog10Real(PetscMax(b / atol, 1.0));
+  }
   per_decade = its / PetscMax(1.0, decades);
   if (r->measure) { /* the first solve with a fresh preconditioner */
     r->fresh   = per_decade;
@@ -60,13 +67,8 @@ static PetscErrorCode Measure(PDPCRefresh *r, KSP ksp, PetscReal bnorm, PetscBoo
 }
 
 PetscErrorCode PDPCRefreshSolved(PDPCRefresh *r, KSP ksp, PetscBool *again) {
-  Vec       b;
-  PetscReal bnorm;
-
   PetscFunctionBeginUser;
-  PetscCall(KSPGetRhs(ksp, &b));
-  PetscCall(VecNorm(b, NORM_2, &bnorm));
-  PetscCall(Measure(r, ksp, bnorm, again));
+  PetscCall(Measure(r, ksp, NULL, again));
   PetscFunctionReturn(0);
 }
 
@@ -81,7 +83,7 @@ static PetscErrorCode MonitorSolve(SNES snes, PetscInt it, PetscReal fnorm, void
   PetscFunctionBeginUser;
   if (it > 0) {
     PetscCall(SNESGetKSP(snes, &ksp));
-    PetscCall(Measure(r, ksp, r->fnorm, NULL));
+    PetscCall(Measure(r, ksp, &r->fnorm, NULL));
   }
   r->fnorm = fnorm;
   PetscFunctionReturn(0);
