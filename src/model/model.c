@@ -249,10 +249,11 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   for (PetscInt k = 0; k < sc->nbars; k++) PDSteelSetUp(&sc->bar[k], &m->steel[k]);
   m->softening = PDSceneHasDamage(sc);
   m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening && !sc->nbars) ? PETSC_TRUE : PETSC_FALSE;
-  /* limiter cap: 10 events per 150,000 bonds by default. N = 10 suits the D = 50 beams at dx = 5 mm
-     (157,000 bonds; N = 1, 10 and 100 give peaks within 1.3 %); at dx = 2.5 mm (1.48 M bonds) N = 10 took
-     130 Newton iterations per increment near the peak, N = 100 about 25 (docs/softening.md). */
-  m->limiter_max = sc->limiter_max >= 0 ? sc->limiter_max : PetscMax(10, (PetscInt)(10.0 * bd->nbonds_global / 150000.0 + 0.5));
+  /* limiter cap by default: a fixed number of events per 150,000 bonds, at least 10. The cap grows with the
+     model: a finer lattice has more bonds in its process zone, and a cap fixed in events multiplies the
+     Newton iterations of the increments near the peak. How many per 150,000 bonds was chosen on the
+     default scene against one event per iteration (docs/softening.md, docs/benchmarks/solve_profile.md) */
+  m->limiter_max = sc->limiter_max >= 0 ? sc->limiter_max : PetscMax(10, (PetscInt)(15.0 * bd->nbonds_global / 150000.0 + 0.5));
   PetscCall(PDLatticeCreateGhostVec(lat, m->bs, &m->u_local));
   PetscCall(VecDuplicate(m->u_local, &m->f_local));
   PetscCall(CreateGlobalVec(lat, m->bs, &m->f_ref));

@@ -499,7 +499,7 @@ const PDOptionSpec PDOptionSchema[] = {
              "false: PETSc's own, which searches each row (docs/solvers.md)"},
     {.name     = "-pd_limiter_max_bonds",
      .type     = PD_OPTION_INT,
-     .def_note = "10 per 150,000 bonds, at least 10",
+     .def_note = "15 per 150,000 bonds, at least 10",
      .later    = PETSC_TRUE,
      .range    = "[0, inf)",
      .when     = PD_WHEN_IMPLICIT,
