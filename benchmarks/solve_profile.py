@@ -47,6 +47,8 @@ CONFIGS = {"default": [], REFERENCE: ["-pd_limiter_max_bonds", "1"],
            # GAMG asked for where the model is below the 2,000 nodes it is the default from
            "GAMG": ["-pc_type", "gamg", "-ksp_pc_side", "right"],
            "whole assembly": ["-pd_assembly_changed_rows", "false"],
+           # the preconditioning matrix with every bond, as before it kept only those up to 2.25 grid spacings
+           "whole preconditioning matrix": ["-pd_pc_reach", "0"], "preconditioning reach 1.75": ["-pd_pc_reach", "1.75"],
            "matrix product": ["-pd_tangent_product", "matrix"],
            "settle first": ["-pd_limiter_settle_first", "true"], "preconditioner lag 3": ["-snes_lag_preconditioner", "3"],
            # (GMRES: FGMRES preconditions on the right only)
@@ -98,7 +100,8 @@ def run(label, extra, dx, timeout):
     ev, stages = parse_log(logf)
     return {"label": label, "dx": dx, "command": " ".join(["build/pdimplicit"] + cmd[1:2] + [os.path.relpath(SCENE, ROOT)] + cmd[3:5] + extra),
             "exit": code, "wall_s": wall, "cpu_s": cpu, "status": s["status"], "steps": s["steps"], "newton_its": s["newton_its"],
-            "ksp_its": s["ksp_its"], "bonds": s["bonds"], "peak_N": s["peak_load_N"], "events_s": ev, "stages_s": stages,
+            "ksp_its": s["ksp_its"], "bonds": s["bonds"], "peak_N": s["peak_load_N"],
+            "peak_rss_MB": s["memory"]["peak_rss_bytes"] / 2**20, "matrix_nonzeros": s["memory"]["matrix_nonzeros"], "events_s": ev, "stages_s": stages,
             "curve": [[float(r["cmod_m"]), float(r["load_N"])] for r in rows]}
 
 
@@ -114,7 +117,9 @@ def report(res):
              "`left preconditioned` the side GAMG had before at dx = 2.5 mm. `last defaults` is the default before FGMRES, the",
              "indexed diagonal, the tangent scalars from the residual's loop and the residual's rows after a limiter grant",
              "(docs/solvers.md); `GMRES`, `diagonal by search`, `tangent's own loop` (which turns off the rows too) and",
-             "`whole residual after a grant` undo one each.", ""]
+             "`whole residual after a grant` undo one each. Memory is the run's peak resident set and the non-zeros are",
+             "the assembled (preconditioning) matrix's, both from `summary.json`; `whole preconditioning matrix` keeps every",
+             "bond in that matrix, as before it kept those up to 2.25 grid spacings (docs/solvers.md).", ""]
     for dx in sorted({r["dx"] for r in res.values()}, reverse=True):
         order = list(CONFIGS)
         runs = sorted((r for r in res.values() if r["dx"] == dx), key=lambda r: order.index(r["label"]) if r["label"] in order else len(order))
@@ -124,12 +129,15 @@ def report(res):
         lines += ["## dx = %g mm" % (1e3 * dx), "",
                   "Peaks and RMS load differences (over the CMOD range both reach, relative to the peak) are against `%s`%s." % (
                       ref["label"], ", the most resolved curve" if ref is not base else " (no more resolved run at this spacing)"), "",
-                  "| configuration | CPU (s) | CPU over default's | wall (s) | steps | Newton | KSP | peak (N) | peak vs reference | RMS vs reference | status |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| configuration | CPU (s) | CPU over default's | wall (s) | steps | Newton | KSP | peak (N) | peak vs reference | RMS vs reference | "
+                  "memory (MB) | matrix non-zeros | status |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for r in runs:
-            lines.append("| %s | %.1f | %.2f | %.1f | %d | %d | %d | %.1f | %+.3f %% | %.3f %% | %s |" % (
+            lines.append("| %s | %.1f | %.2f | %.1f | %d | %d | %d | %.1f | %+.3f %% | %.3f %% | %s | %s | %s |" % (
                 r["label"], r["cpu_s"], r["cpu_s"] / base["cpu_s"], r["wall_s"], r["steps"], r["newton_its"], r["ksp_its"], r["peak_N"],
-                100 * (r["peak_N"] / ref["peak_N"] - 1), 100 * curve_difference(ref, r), r["status"]))
+                100 * (r["peak_N"] / ref["peak_N"] - 1), 100 * curve_difference(ref, r),
+                "%.0f" % r["peak_rss_MB"] if "peak_rss_MB" in r else "-",
+                format(r["matrix_nonzeros"], ",") if "matrix_nonzeros" in r else "-", r["status"]))
         lines += ["", "Time by event (s, solve stage) and its share of the solve stage:", "",
                   "| configuration | " + " | ".join(EVENTS) + " |", "|---|" + "---|" * len(EVENTS)]
         for r in runs:

@@ -100,7 +100,7 @@ PetscErrorCode PDModelDestroy(PDModel *);
 void PDModelResetThresholds(PDModel *);
 #define PD_MAX_EFFECTS 10
 PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
-PetscErrorCode PDModelCreateMatrix(PDModel *, Mat *);
+PetscErrorCode PDModelCreateMatrix(PDModel *, PetscReal reach2, Mat *);
 PetscErrorCode PDMatUseDiagonalIndex(Mat);
 PetscErrorCode PDModelCreateOperators(PDModel *, Mat *J, Mat *P);
 PetscErrorCode PDModelDestroyOperators(Mat *J, Mat *P);

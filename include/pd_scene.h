@@ -162,6 +162,7 @@ typedef struct {
   PetscReal        reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
   PDTangent        tangent;
   PDPCMatrix       pc_matrix;             /* matrix the preconditioner is built from: the tangent, or the secant one */
+  PetscReal        pc_reach;              /* bonds up to this length (grid spacings) in the preconditioning matrix; 0: all; -1: default */
   PetscBool        assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */
   PDTangentProduct tangent_product;       /* Newton's operator: products from the bond scalars, or the assembled matrix */
   PetscBool        tangent_with_residual; /* Newton's tangent scalars from the residual's bond loop */

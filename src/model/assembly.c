@@ -14,64 +14,110 @@ typedef struct {
   PetscReal     *kl;     /* [nbonds] ka / |xi|^2, or -1 for the micromodulus */
   unsigned char *reg;    /* [nowned] dofs of the row given the regularising diagonal, bit r for dof r */
   PetscInt       maxrow; /* blocks in the longest row */
+  PetscBool      fresh;  /* nothing assembled yet: every row due */
+  /* a reduced matrix (PDModelCreateMatrix): the bonds up to the squared length reach2 (0: every bond),
+     their blocks times scale; ncols[i] blocks in row i */
+  PetscReal reach2, scale;
+  PetscInt *ncols;
 } PDAssembled;
 
 static PetscErrorCode AssembledDestroy(void *ctx) {
   PDAssembled *rec = (PDAssembled *)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscFree2(rec->kl, rec->reg));
+  PetscCall(PetscFree3(rec->kl, rec->reg, rec->ncols));
   PetscCall(PetscFree(rec));
   PetscFunctionReturn(0);
 }
 
-/* The record composed on J, created (empty: every row due) on first use. */
-static PetscErrorCode AssembledGet(PDModel *m, Mat J, PDAssembled **rec, PetscBool *fresh) {
-  PetscContainer c;
+/* Composes on J the record of what it holds, before anything is assembled. J keeps the bonds up to the
+   squared length reach2 (0: every bond). A reduced matrix (the preconditioner's, where Krylov solves
+   apply the tangent from the bond scalars) scales its bonds by the ratio of the whole stencil's bulk
+   stiffness to theirs: a homogeneous strain eps gives a bond the energy ka |xi|^2 (e.eps.e)^2 / 2, so
+   the sums of the micromodulus times |xi|^2 over all bonds and over the kept ones compare the two, and
+   the matrix keeps the elastic response at scales above the reach, which is what multigrid's coarse
+   levels see. */
+PetscErrorCode PDModelAssembledAttach(PDModel *m, Mat J, PetscReal reach2) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  PDAssembled     *rec;
+  PetscContainer   c;
+  PetscReal        w[2] = {0, 0}, wg[2];
 
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectQuery((PetscObject)J, "PDAssembled", (PetscObject *)&c));
-  *fresh = c ? PETSC_FALSE : PETSC_TRUE;
-  if (c) {
-    PetscCall(PetscContainerGetPointer(c, (void **)rec));
-    PetscFunctionReturn(0);
+  PetscCall(PetscNew(&rec));
+  PetscCall(PetscMalloc3(PetscMax(1, bd->nbonds), &rec->kl, PetscMax(1, lat->nowned), &rec->reg, PetscMax(1, lat->nowned), &rec->ncols));
+  rec->fresh  = PETSC_TRUE;
+  rec->reach2 = reach2;
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    rec->ncols[i] = 1;
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
+      const PetscInt e = bd->inc_bond[p];
+      rec->ncols[i] += PDBondInReach(m->bs, lat->x, bd->a[e], bd->b[e], reach2);
+    }
+    rec->maxrow = PetscMax(rec->maxrow, rec->ncols[i]);
   }
-  PetscCall(PetscNew(rec));
-  PetscCall(PetscMalloc2(PetscMax(1, m->bonds->nbonds), &(*rec)->kl, PetscMax(1, m->lat->nowned), &(*rec)->reg));
-  for (PetscInt i = 0; i < m->lat->nowned; i++)
-    (*rec)->maxrow = PetscMax((*rec)->maxrow, m->bonds->inc_start[i + 1] - m->bonds->inc_start[i] + 1);
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscReal wb = PDBondStiffness(bd, e) * PetscSqrtReal(PDBondLength2(m->bs, lat->x, bd->a[e], bd->b[e]));
+    w[0] += wb;
+    if (PDBondInReach(m->bs, lat->x, bd->a[e], bd->b[e], reach2)) w[1] += wb;
+  }
+  PetscCall(MPIU_Allreduce(w, wg, 2, MPIU_REAL, MPIU_SUM, lat->comm));
+  rec->scale = wg[1] > 0 ? wg[0] / wg[1] : 1;
+  PetscCall(PetscInfo(J, "Bonds up to %g m, stiffened %g times\n", (double)PetscSqrtReal(reach2), (double)rec->scale));
   PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)J), &c));
-  PetscCall(PetscContainerSetPointer(c, *rec));
+  PetscCall(PetscContainerSetPointer(c, rec));
   PetscCall(PetscContainerSetUserDestroy(c, AssembledDestroy));
   PetscCall(PetscObjectCompose((PetscObject)J, "PDAssembled", (PetscObject)c));
   PetscCall(PetscContainerDestroy(&c));
   PetscFunctionReturn(0);
 }
 
-/* One node's row: blocks -K of its bonds and the diagonal block, in the order of the global ids of the
-   columns' nodes where the row is copied whole (cols, vals with leading dimension ld). Constrained dofs
-   are eliminated symmetrically: their rows and columns are zero but for bc_scale on the diagonal. A free
-   direction left without stiffness (every bond of the node broken) gets a small diagonal so that the
-   matrix stays regular; the residual is not changed, so the solution is not either. */
-static unsigned char NodeRow(PDModel *m, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscInt i, PetscInt *cols,
-                             PetscScalar *vals) {
+static PetscErrorCode AssembledGet(Mat J, PDAssembled **rec) {
+  PetscContainer c;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectQuery((PetscObject)J, "PDAssembled", (PetscObject *)&c));
+  PetscCheck(c, PetscObjectComm((PetscObject)J), PETSC_ERR_ORDER, "The matrix was not made by PDModelCreateMatrix");
+  PetscCall(PetscContainerGetPointer(c, (void **)rec));
+  PetscFunctionReturn(0);
+}
+
+/* One node's row: blocks -K of its bonds (those the matrix keeps, times its scale) and the diagonal
+   block, in the order of the global ids of the columns' nodes where the row is copied whole (cols, vals
+   with leading dimension ld). Constrained dofs are eliminated symmetrically: their rows and columns are
+   zero but for bc_scale on the diagonal. A free direction left without stiffness (every bond of the node
+   broken) gets a small diagonal so that the matrix stays regular; the residual is not changed, so the
+   solution is not either. Whether a direction has stiffness is judged on all its bonds, so that a
+   reduced matrix regularises the dofs the whole one does (the product from the bond scalars adds the
+   same diagonal); a direction whose kept bonds are all broken while others hold gets their diagonal. */
+static unsigned char NodeRow(PDModel *m, const PDAssembled *rec, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscInt i,
+                             PetscInt *cols, PetscScalar *vals) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
-  const PetscInt   bs = m->bs, s = bd->inc_start[i], n = bd->inc_start[i + 1] - s, ld = (n + 1) * bs;
-  PetscInt         diag = n, c = 0;
+  const PetscInt   bs = m->bs, s = bd->inc_start[i], n = bd->inc_start[i + 1] - s, ld = rec->ncols[i] * bs;
+  PetscInt         diag = -1, c = 0;
   unsigned char    reg  = 0;
-  PetscReal        D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Dref[3] = {0, 0, 0};
+  PetscReal        D[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, Dref[3] = {0, 0, 0}, Dall[3] = {0, 0, 0};
 
   for (PetscInt p = 0; p < n; p++) {
     const PetscInt e = bd->inc_bond[s + p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
     PetscReal      dir[3], L0, L, st, q, K[9], a, b;
-    if (diag == n && lat->gid[j] > lat->gid[i]) diag = c++;
     BondState(m->scene, bs, &lat->x[3 * i], &lat->x[3 * j], &u[bs * i], &u[bs * j], dir, &L0, &L, &st, &q);
     /* without per-bond scalars the tangent is the constant linearised micromodulus */
     a = ka ? ka[e] : PDBondStiffness(bd, e) / L0;
     b = kb ? kb[e] : 0;
     for (PetscInt r = 0; r < bs; r++) {
       Dref[r] += PDBondStiffness(bd, e) / L0 * dir[r] * dir[r];
+      Dall[r] += a * dir[r] * dir[r] + b;
+    }
+    if (!PDBondInReach(bs, lat->x, i, j, rec->reach2)) continue;
+    /* the scale stands in for the left-out bonds' stiffness; a softening bond's negative slope is its
+       own, and scaled up it made the matrix far more indefinite than the tangent */
+    if (a > 0) a *= rec->scale;
+    b *= rec->scale;
+    if (diag < 0 && lat->gid[j] > lat->gid[i]) diag = c++;
+    for (PetscInt r = 0; r < bs; r++) {
       for (PetscInt qq = 0; qq < bs; qq++) {
         K[r * bs + qq] = a * dir[r] * dir[qq] + (r == qq ? b : 0);
         D[r * bs + qq] += K[r * bs + qq];
@@ -85,13 +131,14 @@ static unsigned char NodeRow(PDModel *m, const PetscScalar *u, const PetscReal *
       }
     c++;
   }
-  if (diag == n) diag = c;
+  if (diag < 0) diag = c;
   cols[diag] = lat->gid[i];
   for (PetscInt r = 0; r < bs; r++) {
-    if (!m->fixed_local[bs * i + r] && PetscAbsReal(D[r * bs + r]) <= 1e-10 * Dref[r]) {
+    if (!m->fixed_local[bs * i + r] && PetscAbsReal(Dall[r]) <= 1e-10 * Dref[r]) {
       D[r * bs + r] += PD_REGULARISATION * m->bc_scale;
       reg |= (unsigned char)(1u << r);
-    }
+    } else if (PetscAbsReal(D[r * bs + r]) <= 1e-10 * Dref[r])
+      D[r * bs + r] = rec->scale * Dall[r];
     for (PetscInt qq = 0; qq < bs; qq++) {
       const PetscBool fr = m->fixed_local[bs * i + r], fq = m->fixed_local[bs * i + qq];
       vals[r * ld + diag * bs + qq] = (fr || fq) ? (r == qq ? m->bc_scale : 0) : D[r * bs + qq];
@@ -110,7 +157,7 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   const PetscInt   bs = m->bs, bs2 = bs * bs;
   PetscInt        *cols, nreg = 0, nrows = 0;
   PetscScalar     *vals;
-  PetscBool        assembled, aij, rowcopy, fresh = PETSC_TRUE, every;
+  PetscBool        assembled, aij, rowcopy, every;
   PDAssembled     *rec;
   PetscBool       *due;
 
@@ -122,8 +169,9 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscCall(MatAssembled(J, &assembled));
   PetscCall(PetscObjectTypeCompareAny((PetscObject)J, &aij, MATSEQAIJ, MATMPIAIJ, ""));
   rowcopy = assembled && aij;
-  PetscCall(AssembledGet(m, J, &rec, &fresh));
-  every = !assembled || fresh || kb || !m->scene->assembly_changed_rows ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(AssembledGet(J, &rec));
+  every      = !assembled || rec->fresh || kb || !m->scene->assembly_changed_rows ? PETSC_TRUE : PETSC_FALSE;
+  rec->fresh = PETSC_FALSE;
   PetscCall(PetscMalloc1(PetscMax(1, lat->nowned), &due));
   for (PetscInt i = 0; i < lat->nowned; i++) due[i] = every;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
@@ -136,10 +184,10 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   }
   PetscCall(PetscMalloc2(rec->maxrow, &cols, rec->maxrow * bs2, &vals));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    const PetscInt ncols = bd->inc_start[i + 1] - bd->inc_start[i] + 1;
+    const PetscInt ncols = rec->ncols[i];
     if (due[i]) {
       nrows++;
-      rec->reg[i] = NodeRow(m, u, ka, kb, i, cols, vals);
+      rec->reg[i] = NodeRow(m, rec, u, ka, kb, i, cols, vals);
       if (rowcopy)
         for (PetscInt r = 0; r < bs; r++) PetscCall(MatSetValuesRow(J, bs * lat->gid[i] + r, &vals[r * ncols * bs]));
       else

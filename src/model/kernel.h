@@ -49,6 +49,13 @@ static inline PetscReal PDBondLength2(PetscInt bs, const PetscReal *x, PetscInt 
   return L2;
 }
 
+/* Whether the bond i-j has its blocks in a matrix that keeps bonds up to the squared length reach2 (0:
+   every bond; PDModelCreateMatrix) */
+static inline PetscBool PDBondInReach(PetscInt bs, const PetscReal *x, PetscInt i, PetscInt j, PetscReal reach2) {
+  return reach2 == 0 || PDBondLength2(bs, x, i, j) <= reach2 ? PETSC_TRUE : PETSC_FALSE;
+}
+PetscErrorCode PDModelAssembledAttach(PDModel *, Mat, PetscReal reach2);
+
 /* Diagonal added, times bc_scale, to a free dof left without stiffness (every bond of its node broken). */
 #define PD_REGULARISATION 1e-8
 

@@ -1,6 +1,7 @@
 /* The stiffness matrix: block size = dofs per node, preallocated exactly from the bond incidence,
    with the rigid-body near-null space attached for algebraic multigrid. */
 #include "pd_model.h"
+#include "kernel.h"
 #include <petscpc.h>
 
 /* Algebraic multigrid is the default preconditioner where ICC(0)'s iteration count (which doubles as dx
@@ -22,7 +23,9 @@ PetscBool PDModelDefaultsToGAMG(const PDModel *m) {
              : PETSC_FALSE;
 }
 
-PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
+/* The matrix of the bonds up to the squared length reach2 (0: every bond), with the record of what it
+   holds (assembly.c). */
+PetscErrorCode PDModelCreateMatrix(PDModel *m, PetscReal reach2, Mat *J) {
   const PDLattice *lat = m->lat;
   const PDBonds   *bd  = m->bonds;
   const PetscInt   bs  = m->bs;
@@ -40,6 +43,7 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
       const PetscInt  e = bd->inc_bond[p], j = bd->a[e] == i ? bd->b[e] : bd->a[e];
       const PetscBool upper = lat->gid[j] > lat->gid[i];
+      if (!PDBondInReach(bs, lat->x, i, j, reach2)) continue;
       if (j < lat->nowned) {
         dnnz[i]++;
         dnnzu[i] += upper;
@@ -75,6 +79,7 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, Mat *J) {
   /* dF_i/du_j = dF_j/du_i for every bond, and the elimination of constrained dofs is symmetric */
   PetscCall(MatSetOption(*J, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*J, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
+  PetscCall(PDModelAssembledAttach(m, *J, reach2));
 
   PetscCall(VecCreate(lat->comm, &coords));
   PetscCall(VecSetSizes(coords, bs * lat->nowned, PETSC_DECIDE));

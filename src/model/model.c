@@ -249,6 +249,9 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   for (PetscInt k = 0; k < sc->nbars; k++) PDSteelSetUp(&sc->bar[k], &m->steel[k]);
   m->softening = PDSceneHasDamage(sc);
   m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening && !sc->nbars) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCheck(sc->pc_reach <= 0 || !m->linear, lat->comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_pc_reach: applies to non-linear scenes (a linear one solves with the assembled matrix), got %g",
+             (double)sc->pc_reach);
   /* limiter cap by default: a fixed number of events per 150,000 bonds, at least 10. The cap grows with the
      model: a finer lattice has more bonds in its process zone, and a cap fixed in events multiplies the
      Newton iterations of the increments near the peak. How many per 150,000 bonds was chosen on the

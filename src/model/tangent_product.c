@@ -66,6 +66,18 @@ static PetscBool TangentFromBonds(const PDModel *m) {
   return m->scene->tangent_product == PD_TANGENT_PRODUCT_BONDS && m->ka && !m->kb && !m->kp ? PETSC_TRUE : PETSC_FALSE;
 }
 
+/* The squared length of the longest bond the preconditioning matrix keeps (-pd_pc_reach, in grid
+   spacings; the margin takes round-off in the coordinates): 0, every bond, unless Krylov solves apply
+   the tangent from the bond scalars, which then hold the bonds P leaves out. The default reach in 3D
+   keeps the offsets up to (2, 1, 0): on the default scene GAMG then needs no more Krylov iterations than
+   with every bond, for a matrix of half the size. 2D models keep every bond: their matrices are small,
+   and a 2D path-following test lost its path with the near bonds only (docs/solvers.md). */
+#define PD_PC_REACH_DEFAULT_3D 2.25
+static PetscReal PreconditionerReach2(const PDModel *m) {
+  const PetscReal r = (m->scene->pc_reach >= 0 ? m->scene->pc_reach : (m->bs == 3 ? PD_PC_REACH_DEFAULT_3D : 0)) * m->lat->dx;
+  return TangentFromBonds(m) ? r * r * (1 + 1e-9) : 0;
+}
+
 /* The Newton operator J and its preconditioning matrix P: P assembled (the tangent, or the secant one), J
    the product of the tangent from the bond scalars, the assembled tangent, or P itself. */
 PetscErrorCode PDModelCreateOperators(PDModel *m, Mat *J, Mat *P) {
@@ -73,9 +85,9 @@ PetscErrorCode PDModelCreateOperators(PDModel *m, Mat *J, Mat *P) {
   PetscInt        n, N;
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelCreateMatrix(m, P));
+  PetscCall(PDModelCreateMatrix(m, PreconditionerReach2(m), P));
   if (m->kp) {
-    PetscCall(PDModelCreateMatrix(m, J));
+    PetscCall(PDModelCreateMatrix(m, 0, J));
     PetscFunctionReturn(0);
   }
   if (!TangentFromBonds(m)) {

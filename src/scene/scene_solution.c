@@ -71,7 +71,18 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_assembly_changed_rows", &sc->assembly_changed_rows, NULL));
   t = PD_TANGENT_PRODUCT_BONDS;
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_tangent_product", &t, NULL));
-  sc->tangent_product       = (PDTangentProduct)t;
+  sc->tangent_product = (PDTangentProduct)t;
+  sc->pc_reach        = -1;
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_pc_reach", &sc->pc_reach, &set));
+  PetscCheck(!set || sc->pc_reach == 0 || sc->pc_reach >= 1, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_pc_reach: 0 (every bond) or at least 1 grid spacing (the nearest neighbours), got %g", (double)sc->pc_reach);
+  PetscCheck(!set || sc->pc_reach == 0 ||
+                 (sc->kinematics == PD_KINEMATICS_SMALL && sc->pc_matrix == PD_PC_MATRIX_TANGENT &&
+                  sc->tangent_product == PD_TANGENT_PRODUCT_BONDS),
+             comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_pc_reach: a reduced preconditioning matrix needs small kinematics, -pd_pc_matrix tangent and "
+             "-pd_tangent_product bonds (the Krylov operator is then the tangent from the bond scalars), got %g",
+             (double)sc->pc_reach);
   sc->tangent_with_residual = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_tangent_with_residual", &sc->tangent_with_residual, NULL));
   sc->residual_rows = PETSC_TRUE;

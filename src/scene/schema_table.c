@@ -457,6 +457,14 @@ const PDOptionSpec PDOptionSchema[] = {
      .when   = PD_WHEN_IMPLICIT,
      .help = "Matrix the preconditioner is built from: tangent, or secant (softening bonds at their secant slope: a definite matrix where "
              "the tangent is not, as after localisation in 3D; Newton keeps the tangent)"},
+    {.name     = "-pd_pc_reach",
+     .type     = PD_OPTION_REAL,
+     .def_note = "2.25 in 3D where Krylov solves apply the tangent from the bond scalars, else 0",
+     .range    = "[0, inf)",
+     .when     = PD_WHEN_IMPLICIT,
+     .help     = "Preconditioning matrix built from the bonds up to this length, in grid spacings (at least 1), their elastic slopes "
+                 "stiffened to the whole stencil's bulk stiffness; for non-linear scenes whose Krylov solves apply the tangent from the "
+                 "bond scalars (small kinematics, -pd_tangent_product bonds, -pd_pc_matrix tangent); 0: every bond (docs/solvers.md)"},
     {.name     = "-pd_mat_type",
      .type     = PD_OPTION_ENUM,
      .values   = PDMatTypes,
