@@ -53,6 +53,7 @@ typedef struct {
   PetscReal     *stretch;                   /* per-bond scratch of the limiter and the history update */
   unsigned char *branch;                    /* path following: per-bond PDBranch frozen for a stage, or NULL */
   PetscInt       limiter_max;               /* bond events granted per Newton iteration; 0: no cap */
+  PetscReal      pc_reach;                  /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
   PetscBool      commit_history;            /* explicit path: every force evaluation raises kappa */
   PetscReal     *sp_n;                      /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
   PetscBool     *ruptured_n;                /* [nseg] the segment has broken (committed) */

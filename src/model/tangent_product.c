@@ -73,9 +73,10 @@ static PetscBool TangentFromBonds(const PDModel *m) {
    with every bond, for a matrix of half the size. 2D models keep every bond: their matrices are small,
    and a 2D path-following test lost its path with the near bonds only (docs/solvers.md). */
 #define PD_PC_REACH_DEFAULT_3D 2.25
-static PetscReal PreconditionerReach2(const PDModel *m) {
-  const PetscReal r = (m->scene->pc_reach >= 0 ? m->scene->pc_reach : (m->bs == 3 ? PD_PC_REACH_DEFAULT_3D : 0)) * m->lat->dx;
-  return TangentFromBonds(m) ? r * r * (1 + 1e-9) : 0;
+static PetscReal PreconditionerReach2(PDModel *m) {
+  const PetscReal r = m->scene->pc_reach >= 0 ? m->scene->pc_reach : (m->bs == 3 ? PD_PC_REACH_DEFAULT_3D : 0);
+  m->pc_reach       = TangentFromBonds(m) ? r : 0;
+  return PetscSqr(m->pc_reach * m->lat->dx) * (1 + 1e-9);
 }
 
 /* The Newton operator J and its preconditioning matrix P: P assembled (the tangent, or the secant one), J

@@ -460,6 +460,7 @@ const PDOptionSpec PDOptionSchema[] = {
     {.name     = "-pd_pc_reach",
      .type     = PD_OPTION_REAL,
      .def_note = "2.25 in 3D where Krylov solves apply the tangent from the bond scalars, else 0",
+     .later    = PETSC_TRUE,
      .range    = "[0, inf)",
      .when     = PD_WHEN_IMPLICIT,
      .help     = "Preconditioning matrix built from the bonds up to this length, in grid spacings (at least 1), their elastic slopes "
