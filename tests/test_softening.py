@@ -66,6 +66,14 @@ def reduced_pc():
     check(worst < 1e-6, "every row's load within %.1e of the peak (1e-6)" % worst)
     nz = [r.summary["memory"]["matrix_nonzeros"] for r in (reduced, whole)]
     check(nz[0] <= 0.6 * nz[1], "matrix non-zeros: %d reduced, %d with every bond (at most six tenths)" % tuple(nz))
+    reach = [r.summary["pc_reach"] for r in (reduced, whole)]
+    check(reach == [2.25, 0], "summary.json's pc_reach: %s" % reach)
+    # a direct solver applies the factor of P as the tangent's inverse: P keeps every bond, and each
+    # increment of the still elastic beam takes one Newton iteration
+    direct = run("gregoire_d50_hn", *HN, "-ksp_type", "preonly", "-pc_type", "cholesky", "-pd_stop_cmod", 1e-5)
+    s = direct.summary
+    check(s["pc_reach"] == 0 and s["newton_its"] == s["steps"], "direct solver: pc_reach %g, %d Newton iterations in %d increments" % (
+        s["pc_reach"], s["newton_its"], s["steps"]))
 
 
 def limiter():

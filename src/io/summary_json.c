@@ -211,7 +211,7 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          m->nconstrained, m->nzero_dofs, m->nisolated));
   PetscCall(PDEscapeJSON(rec->solver, &text));
   PetscCall(PetscFPrintf(comm, fp,
-                         "  \"solver\": %s,\n  \"pc_reach\": %g,\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT
+                         "  \"solver\": %s,\n  \"pc_reach\": %.4f,\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT
                          ",\n  \"residuals_by_rows\": %" PetscInt_FMT ",\n",
                          text, (double)m->pc_reach, m->linear ? "true" : "false", m->jacobian_assemblies, m->residuals_by_rows));
   PetscCall(PetscFree(text));

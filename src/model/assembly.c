@@ -58,7 +58,9 @@ PetscErrorCode PDModelAssembledAttach(PDModel *m, Mat J, PetscReal reach2) {
     rec->maxrow = PetscMax(rec->maxrow, rec->ncols[i]);
   }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscReal wb = PDBondStiffness(bd, e) * PetscSqrtReal(PDBondLength2(m->bs, lat->x, bd->a[e], bd->b[e]));
+    /* each bond once over the ranks, so that the scale does not depend on the partition */
+    const PetscReal wb =
+        PDBondCountedHere(lat, bd, e) ? PDBondStiffness(bd, e) * PetscSqrtReal(PDBondLength2(m->bs, lat->x, bd->a[e], bd->b[e])) : 0;
     w[0] += wb;
     if (PDBondInReach(m->bs, lat->x, bd->a[e], bd->b[e], reach2)) w[1] += wb;
   }
@@ -138,7 +140,7 @@ static unsigned char NodeRow(PDModel *m, const PDAssembled *rec, const PetscScal
       D[r * bs + r] += PD_REGULARISATION * m->bc_scale;
       reg |= (unsigned char)(1u << r);
     } else if (PetscAbsReal(D[r * bs + r]) <= 1e-10 * Dref[r])
-      D[r * bs + r] = rec->scale * Dall[r];
+      D[r * bs + r] = Dall[r] > 0 ? rec->scale * Dall[r] : Dall[r];
     for (PetscInt qq = 0; qq < bs; qq++) {
       const PetscBool fr = m->fixed_local[bs * i + r], fq = m->fixed_local[bs * i + qq];
       vals[r * ld + diag * bs + qq] = (fr || fq) ? (r == qq ? m->bc_scale : 0) : D[r * bs + qq];
@@ -207,7 +209,8 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
 }
 
 /* What P was last assembled with: each bond's ka / |xi|^2 and each owned row's regularised dofs (NULL
-   before the first assembly). Read by the matrix-free product of the same matrix (tangent_product.c). */
+   before the first assembly). Read by the matrix-free product of the tangent P preconditions
+   (tangent_product.c). */
 PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg) {
   PetscContainer c;
   PDAssembled   *rec;
@@ -218,6 +221,7 @@ PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned
   PetscCall(PetscObjectQuery((PetscObject)P, "PDAssembled", (PetscObject *)&c));
   if (!c) PetscFunctionReturn(0);
   PetscCall(PetscContainerGetPointer(c, (void **)&rec));
+  if (rec->fresh) PetscFunctionReturn(0);
   *kl  = rec->kl;
   *reg = rec->reg;
   PetscFunctionReturn(0);

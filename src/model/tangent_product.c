@@ -73,10 +73,21 @@ static PetscBool TangentFromBonds(const PDModel *m) {
    with every bond, for a matrix of half the size. 2D models keep every bond: their matrices are small,
    and a 2D path-following test lost its path with the near bonds only (docs/solvers.md). */
 #define PD_PC_REACH_DEFAULT_3D 2.25
-static PetscReal PreconditionerReach2(PDModel *m) {
-  const PetscReal r = m->scene->pc_reach >= 0 ? m->scene->pc_reach : (m->bs == 3 ? PD_PC_REACH_DEFAULT_3D : 0);
-  m->pc_reach       = TangentFromBonds(m) ? r : 0;
-  return PetscSqr(m->pc_reach * m->lat->dx) * (1 + 1e-9);
+static PetscErrorCode PreconditionerReach2(PDModel *m, PetscReal *reach2) {
+  char      ksptype[64] = "";
+  PetscBool direct;
+  PetscReal r;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-ksp_type", ksptype, sizeof ksptype, NULL));
+  PetscCall(PetscStrcmp(ksptype, KSPPREONLY, &direct));
+  /* by default every bond where a direct solver (-ksp_type preonly) applies P's factor as the inverse,
+     and where steel bars run: their segments are single stiff bonds, whose slopes no scale stands in
+     for, and a bar's bonds can be longer than the reach */
+  r           = m->scene->pc_reach >= 0 ? m->scene->pc_reach : (m->bs == 3 && !direct && !m->scene->nbars ? PD_PC_REACH_DEFAULT_3D : 0);
+  m->pc_reach = TangentFromBonds(m) ? r : 0;
+  *reach2     = PetscSqr(m->pc_reach * m->lat->dx) * (1 + 1e-9);
+  PetscFunctionReturn(0);
 }
 
 /* The Newton operator J and its preconditioning matrix P: P assembled (the tangent, or the secant one), J
@@ -84,9 +95,11 @@ static PetscReal PreconditionerReach2(PDModel *m) {
 PetscErrorCode PDModelCreateOperators(PDModel *m, Mat *J, Mat *P) {
   TangentProduct *tp;
   PetscInt        n, N;
+  PetscReal       reach2 = 0;
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelCreateMatrix(m, PreconditionerReach2(m), P));
+  PetscCall(PreconditionerReach2(m, &reach2));
+  PetscCall(PDModelCreateMatrix(m, reach2, P));
   if (m->kp) {
     PetscCall(PDModelCreateMatrix(m, 0, J));
     PetscFunctionReturn(0);

@@ -75,7 +75,8 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   sc->pc_reach        = -1;
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_pc_reach", &sc->pc_reach, &set));
   PetscCheck(!set || sc->pc_reach == 0 || sc->pc_reach >= 1, comm, PETSC_ERR_USER_INPUT,
-             "Option -pd_pc_reach: 0 (every bond) or at least 1 grid spacing (the nearest neighbours), got %g", (double)sc->pc_reach);
+             "Option -pd_pc_reach: 0 (every bond) or a length of at least 1 grid spacing (the nearest neighbours), got %g",
+             (double)sc->pc_reach);
   PetscCheck(!set || sc->pc_reach == 0 ||
                  (sc->kinematics == PD_KINEMATICS_SMALL && sc->pc_matrix == PD_PC_MATRIX_TANGENT &&
                   sc->tangent_product == PD_TANGENT_PRODUCT_BONDS),

@@ -459,7 +459,7 @@ const PDOptionSpec PDOptionSchema[] = {
              "the tangent is not, as after localisation in 3D; Newton keeps the tangent)"},
     {.name     = "-pd_pc_reach",
      .type     = PD_OPTION_REAL,
-     .def_note = "2.25 in 3D where Krylov solves apply the tangent from the bond scalars, else 0",
+     .def_note = "2.25 in 3D where Krylov solves apply the tangent from the bond scalars (no bars, no direct solver), else 0",
      .later    = PETSC_TRUE,
      .range    = "[0, inf)",
      .when     = PD_WHEN_IMPLICIT,
