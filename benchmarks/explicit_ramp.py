@@ -17,6 +17,7 @@ import argparse
 import csv
 import json
 import os
+import statistics
 import tempfile
 
 from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, store_result
@@ -125,7 +126,7 @@ def report(res):
         s = res[k]
         imp = s["implicit"]
         best = s["explicit"]["%.6g" % s["shortest_ramp_s"]]
-        median = lambda r: sorted(r.get("cpu_runs_s", [r["cpu_s"]]))[len(r.get("cpu_runs_s", [r["cpu_s"]])) // 2]
+        median = lambda r: statistics.median(r.get("cpu_runs_s", [r["cpu_s"]]))
         runs_note = (" Repeated in turn, %d runs each: implicit CPU %s s, explicit %s s; the ratio is of the medians." % (
             len(imp["cpu_runs_s"]), ", ".join("%.1f" % t for t in imp["cpu_runs_s"]), ", ".join("%.1f" % t for t in best["cpu_runs_s"]))
             if len(imp.get("cpu_runs_s", [])) > 1 else "")
