@@ -15,7 +15,9 @@
    Galerkin products, eigenvalue estimates) costs several V-cycles. A hierarchy built before the damage still fits the tangent, which damage
    changes in a band of bonds. Each solve is measured in Krylov iterations per decade of residual reduction (its over log10(1/rtol):
    Eisenstat-Walker moves rtol from solve to solve; a solve stopped at the drivers' absolute floor counts the decades from its
-   right-hand side down to the floor). The first solve after a rebuild sets the reference; a later one that needs more than
+   right-hand side down to the floor). The first solve after a rebuild that takes more than one iteration sets the reference (a
+   single iteration, under a loose Eisenstat-Walker tolerance, says nothing of the preconditioner, and as a reference it made
+   every ordinary solve look stale); a later one that needs more than
      PD_STALE_FACTOR times it plus PD_STALE_SLACK, or that fails, asks for a rebuild at the next
      assembly, and a failed one may be made again at once with a fresh preconditioner.
    docs/solvers.md and docs/benchmarks/pc_refresh.md have the measurements. */
@@ -54,7 +56,8 @@ static PetscErrorCode Measure(PDPCRefresh *r, KSP ksp, const PetscReal *bnorm, P
     decades = PetscLog10Real(PetscMax(b / atol, 1.0));
   }
   per_decade = its / PetscMax(1.0, decades);
-  if (r->measure) { /* the first solve with a fresh preconditioner */
+  if (r->measure && its < 2) PetscFunctionReturn(0); /* measures nothing: the next solve sets the reference */
+  if (r->measure) {                                  /* the first solve with a fresh preconditioner */
     r->fresh   = per_decade;
     r->measure = PETSC_FALSE;
   } else if (!r->due && (reason < 0 || per_decade > PD_STALE_FACTOR * r->fresh + PD_STALE_SLACK)) {
