@@ -31,13 +31,13 @@ static PetscErrorCode AssembledDestroy(void *ctx) {
 }
 
 /* Composes on J the record of what it holds, before anything is assembled. J keeps the bonds up to the
-   squared length reach2 (0: every bond). A reduced matrix (the preconditioner's, where Krylov solves
-   apply the tangent from the bond scalars) scales its bonds by the ratio of the whole stencil's bulk
+   squared length reach2 (0: every bond), ncols[i] blocks in row i as preallocated (PDModelCreateMatrix). A reduced matrix (the
+   preconditioner's, where Krylov solves apply the tangent from the bond scalars) scales its bonds by the ratio of the whole stencil's bulk
    stiffness to theirs: a homogeneous strain eps gives a bond the energy ka |xi|^2 (e.eps.e)^2 / 2, so
    the sums of the micromodulus times |xi|^2 over all bonds and over the kept ones compare the two, and
    the matrix keeps the elastic response at scales above the reach, which is what multigrid's coarse
    levels see. */
-PetscErrorCode PDModelAssembledAttach(PDModel *m, Mat J, PetscReal reach2) {
+PetscErrorCode PDModelAssembledAttach(PDModel *m, Mat J, PetscReal reach2, const PetscInt *ncols) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   PDAssembled     *rec;
@@ -50,12 +50,8 @@ PetscErrorCode PDModelAssembledAttach(PDModel *m, Mat J, PetscReal reach2) {
   rec->fresh  = PETSC_TRUE;
   rec->reach2 = reach2;
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    rec->ncols[i] = 1;
-    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
-      const PetscInt e = bd->inc_bond[p];
-      rec->ncols[i] += PDBondInReach(m->bs, lat->x, bd->a[e], bd->b[e], reach2);
-    }
-    rec->maxrow = PetscMax(rec->maxrow, rec->ncols[i]);
+    rec->ncols[i] = ncols[i];
+    rec->maxrow   = PetscMax(rec->maxrow, ncols[i]);
   }
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     /* each bond once over the ranks, so that the scale does not depend on the partition */

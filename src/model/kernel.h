@@ -54,7 +54,7 @@ static inline PetscReal PDBondLength2(PetscInt bs, const PetscReal *x, PetscInt 
 static inline PetscBool PDBondInReach(PetscInt bs, const PetscReal *x, PetscInt i, PetscInt j, PetscReal reach2) {
   return reach2 == 0 || PDBondLength2(bs, x, i, j) <= reach2 ? PETSC_TRUE : PETSC_FALSE;
 }
-PetscErrorCode PDModelAssembledAttach(PDModel *, Mat, PetscReal reach2);
+PetscErrorCode PDModelAssembledAttach(PDModel *, Mat, PetscReal reach2, const PetscInt *ncols);
 
 /* Diagonal added, times bc_scale, to a free dof left without stiffness (every bond of its node broken). */
 #define PD_REGULARISATION 1e-8

@@ -70,7 +70,7 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, PetscReal reach2, Mat *J) {
     PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
   }
   PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));
-  PetscCall(PetscFree4(dnnz, onnz, dnnzu, onnzu));
+  for (PetscInt i = 0; i < lat->nowned; i++) dnnz[i] += onnz[i]; /* blocks per row, for the record */
   if (m->scene->diagonal_index) PetscCall(PDMatUseDiagonalIndex(*J));
   PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   PetscCall(MatSetOption(*J, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
@@ -79,7 +79,8 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, PetscReal reach2, Mat *J) {
   /* dF_i/du_j = dF_j/du_i for every bond, and the elimination of constrained dofs is symmetric */
   PetscCall(MatSetOption(*J, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*J, MAT_SYMMETRY_ETERNAL, PETSC_TRUE));
-  PetscCall(PDModelAssembledAttach(m, *J, reach2));
+  PetscCall(PDModelAssembledAttach(m, *J, reach2, dnnz));
+  PetscCall(PetscFree4(dnnz, onnz, dnnzu, onnzu));
 
   PetscCall(VecCreate(lat->comm, &coords));
   PetscCall(VecSetSizes(coords, bs * lat->nowned, PETSC_DECIDE));
