@@ -36,9 +36,12 @@ BEAMS = {"d100": ("gregoire_d100_hn.opts", ["-pd_stop_cmod", "1.2e-4"],
                                                  "-pd_stop_cmod", "0", "-pd_lambda_max", "4", "-pd_steps", "800"],
                         "D = 50 mm half-notched, dx = 5 mm, 3,500 nodes, GAMG, path following with IMPL-EX 0.03 to 10 % of the peak")}
 # path following's linear solves: fixed tolerances for every solve, and the solves before they were matched to Newton's need
-FIXED = ("fixed linear tolerances", ["-ksp_rtol", "1e-8"])
+# (with the equilibrium tolerance IMPL-EX steps had then)
+FIXED = ("fixed linear tolerances", ["-ksp_rtol", "1e-8", "-pd_arclength_rtol", "1e-7"])
 PREVIOUS = ("previous linear solves", ["-ksp_rtol", "1e-8", "-ksp_pc_side", "left", "-pd_augmented_ksp_type", "gmres",
-                                       "-pd_augmented_ksp_pc_side", "left"])
+                                       "-pd_augmented_ksp_pc_side", "left", "-pd_arclength_rtol", "1e-7"])
+# IMPL-EX steps in equilibrium to the implicit steps' tolerance instead of their own (src/solve/arclength.c)
+IMPLEX_TIGHT = ("equilibrium to 1e-7", ["-pd_arclength_rtol", "1e-7"])
 # label -> options, per beam
 CONFIGS = {"d100": [("rebuilt when stale (default)", []), ("every third assembly", ["-snes_lag_preconditioner", "3"]),
                     ("never rebuilt", ["-snes_lag_preconditioner", "-2"]),
@@ -48,9 +51,9 @@ CONFIGS = {"d100": [("rebuilt when stale (default)", []), ("every third assembly
            # IMPL-EX: two tight Krylov solves per step; the path direction's started from zero instead of from the last
            # direction (docs/arclength.md), and every row of the matrix rewritten at each assembly
            "d100_implex": [("default", []), ("direction from zero", ["-pd_arclength_guess", "false"]),
-                           ("whole assembly", ["-pd_assembly_changed_rows", "false"]), FIXED, PREVIOUS],
+                           ("whole assembly", ["-pd_assembly_changed_rows", "false"]), IMPLEX_TIGHT, FIXED, PREVIOUS],
            "d50_arclength": [("default", []), FIXED, PREVIOUS],
-           "d50_implex": [("default", []), FIXED, PREVIOUS]}
+           "d50_implex": [("default", []), IMPLEX_TIGHT, FIXED, PREVIOUS]}
 EVENTS = ["PCSetUp", "PCApply", "MatMult", "KSPSolve", "PDAssembly"]
 
 

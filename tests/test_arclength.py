@@ -284,6 +284,13 @@ def implex():
     check(rel(p1, p0) < rel(p2, p0), "the smaller error per step is closer: %.2f %% against %.2f %% at 0.1" % (100 * rel(p1, p0), 100 * rel(p2, p0)))
     d0, d1 = at_fraction(ref, 0.05), at_fraction(fine, 0.05)
     check(rel(d1, d0) < 0.02, "IMPL-EX 0.01: dissipated at 5 %% of the peak %.4f J within 2 %% of the reference %.4f J" % (d1, d0))
+    # IMPL-EX steps stop at equilibrium to 1e-5 of |f_int|, implicit ones at 1e-7: a step's error is its
+    # extrapolation's, and equilibrium to 1e-7 gives the same curve (peak and dissipation apart by orders of
+    # magnitude less than the tolerances here)
+    tight = run(HN2D, *opts, "-pd_arclength_implex", "0.01", "-pd_arclength_rtol", "1e-7")
+    pt, dt = tight.summary["peak_load_N"], at_fraction(tight, 0.05)
+    check(rel(p1, pt) < 1e-4, "IMPL-EX 0.01: peak %.3f N within 1e-4 of %.3f N with equilibrium to 1e-7" % (p1, pt))
+    check(rel(d1, dt) < 2e-3, "IMPL-EX 0.01: dissipated at 5 %% of the peak %.5f J within 0.2 %% of %.5f J with equilibrium to 1e-7" % (d1, dt))
 
 
 def mpi():

@@ -19,6 +19,7 @@ static PetscErrorCode ReadPathFollowing(PetscOptionItems *PetscOptionsObject, MP
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_target_its", &sc->arc_target_its, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_halved_its", &sc->arc_halved_its, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_hold", &sc->arc_hold, NULL));
+  sc->arc_rtol = 0; /* worked out by the path: PD_ARC_RTOL, or PD_IMPLEX_RTOL for IMPL-EX steps */
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_rtol", &sc->arc_rtol, NULL));
   sc->arc_guess = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_arclength_guess", &sc->arc_guess, NULL));

@@ -32,6 +32,11 @@ typedef struct {
 #define NSTATE 16 /* scalars a checkpoint keeps of the driver (state_names below) */
 /* IMPL-EX tolerance of the fallback: the value docs/arclength.md measured on the 2D half-notched beam */
 #define PD_FALLBACK_IMPLEX 0.01
+/* equilibrium tolerance of a step (-pd_arclength_rtol): implicit steps settle the limiter's bonds on it;
+   an IMPL-EX step is a secant problem whose error is the extrapolation's, which a looser equilibrium
+   hardly changes while its corrector solve stops decades sooner (docs/arclength.md, "Linear tolerances") */
+#define PD_ARC_RTOL 1e-7
+#define PD_IMPLEX_RTOL 1e-5
 /* Krylov tolerance of the predictor's direction where the augmented corrector follows: the direction only
    starts the step and estimates the corrector's Schur complement, and the equilibrium the corrector
    reaches does not depend on it (docs/arclength.md, "Linear tolerances") */
@@ -68,6 +73,7 @@ typedef struct {
   /* IMPL-EX (-pd_arclength_implex): bond histories at the last two accepted steps, the one a step uses */
   PetscReal  *kx_n, *kx_prev;
   PetscReal   implex;   /* the damage error per step IMPL-EX adapts to (-pd_arclength_implex, or the fallback's) */
+  PetscReal   eq_rtol;  /* equilibrium: |R| below this times |f_int| (-pd_arclength_rtol, or PD_ARC_RTOL / PD_IMPLEX_RTOL) */
   PetscReal   len_prev; /* the last accepted step's length in the units of the next one */
   PetscInt    rejects;  /* IMPL-EX steps made again shorter since the last accepted one */
   Reversal    rev;      /* load reversal; while unloading (phase 1) the cmod gauge closes */
@@ -368,7 +374,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     }
     a->why = "residual not finite";
     if (PetscIsInfOrNanReal(rnorm)) PetscFunctionReturn(0);
-    tol = m->scene->arc_rtol * fnorm + 1e-12 * m->force_scale;
+    tol = a->eq_rtol * fnorm + 1e-12 * m->force_scale;
     PetscCall(PetscInfo(NULL, "arclength iteration %" PetscInt_FMT ": |R| %g, tolerance %g, lambda %.10g\n", k, (double)rnorm, (double)tol,
                         (double)a->lam));
     if (rnorm <= tol && m->branch && !a->kx_n) {
@@ -648,7 +654,8 @@ static PetscErrorCode StartImplex(Arc *a, PetscReal tol, PetscBool have_prev) {
   PDModel *m = a->m;
 
   PetscFunctionBeginUser;
-  a->implex = tol;
+  a->implex  = tol;
+  a->eq_rtol = m->scene->arc_rtol > 0 ? m->scene->arc_rtol : PD_IMPLEX_RTOL;
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
     a->kx_n[e]                  = m->kappa[e];
@@ -674,6 +681,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   a.type      = ARC_LOAD;
   a.dlam      = sc->lambda_max / sc->steps;
   a.peak_sign = 1;
+  a.eq_rtol   = sc->arc_rtol > 0 ? sc->arc_rtol : PD_ARC_RTOL;
   PetscCall(PDModelCreateOperators(m, &a.J, &a.P));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
