@@ -268,7 +268,7 @@ def implex():
     # -pd_arclength_implex: each step uses damage extrapolated from the last two and solves a secant problem,
     # so Newton has no kink to cycle on. The 2D half-notched beam (dx = 10 mm) to 2 % of its peak against the
     # most resolved implicit path (one level, one bond event per iteration). Measured peaks (N): reference
-    # 3,648.4; IMPL-EX 3,773.6 at an error of 0.1 per step, 3,699.7 at 0.03, 3,667.3 at 0.01 (first order:
+    # 3,648.4; IMPL-EX 3,773.6 at an error of 0.1 per step, 3,699.7 at 0.03, 3,667.3 at 0.01 (equilibrium to 1e-7; first order:
     # the damage lags the stretch by a step). Newton iterations per step: at most 2 (41 on the reference).
     opts = ["-pd_dx", "0.01", "-pd_control", "arclength", "-pd_stop_fraction", "0.02"]
     ref = run(HN2D, *opts, "-pd_limiter_max_bonds", "1")
@@ -288,6 +288,9 @@ def implex():
     # extrapolation's, and equilibrium to 1e-7 gives the same curve (peak and dissipation apart by orders of
     # magnitude less than the tolerances here)
     tight = run(HN2D, *opts, "-pd_arclength_implex", "0.01", "-pd_arclength_rtol", "1e-7")
+    for r, want in ((fine, 1e-5), (tight, 1e-7)):
+        got = r.summary["equilibrium_rtol"]["implex_steps"]
+        check(got == want, "summary.json reports IMPL-EX steps in equilibrium to %g (%g)" % (want, got))
     pt, dt = tight.summary["peak_load_N"], at_fraction(tight, 0.05)
     check(rel(p1, pt) < 1e-4, "IMPL-EX 0.01: peak %.3f N within 1e-4 of %.3f N with equilibrium to 1e-7" % (p1, pt))
     check(rel(d1, dt) < 2e-3, "IMPL-EX 0.01: dissipated at 5 %% of the peak %.5f J within 0.2 %% of %.5f J with equilibrium to 1e-7" % (d1, dt))

@@ -233,6 +233,9 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                            rec->fallback_step, (double)rec->fallback_lambda, text, rec->fallback_implex_step));
     PetscCall(PetscFree(text));
   }
+  if (rec->arc_rtol > 0)
+    PetscCall(PetscFPrintf(comm, fp, "  \"equilibrium_rtol\": {\"implicit_steps\": %.3e, \"implex_steps\": %.3e},\n", (double)rec->arc_rtol,
+                           (double)rec->implex_rtol));
   if (rec->restart_from[0]) {
     PetscCall(PDEscapeJSON(rec->restart_from, &text));
     PetscCall(PetscFPrintf(comm, fp, "  \"restart\": {\"from\": %s, \"step\": %" PetscInt_FMT "},\n", text, rec->restart_step));

@@ -682,6 +682,9 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   a.dlam      = sc->lambda_max / sc->steps;
   a.peak_sign = 1;
   a.eq_rtol   = sc->arc_rtol > 0 ? sc->arc_rtol : PD_ARC_RTOL;
+  /* what summary.json reports */
+  rec->arc_rtol    = a.eq_rtol;
+  rec->implex_rtol = sc->arc_rtol > 0 ? sc->arc_rtol : PD_IMPLEX_RTOL;
   PetscCall(PDModelCreateOperators(m, &a.J, &a.P));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
