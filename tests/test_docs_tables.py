@@ -11,7 +11,7 @@ DOCS = os.path.join(ROOT, "docs", "benchmarks")
 # script -> the tables its --report writes
 REPORTS = {"accuracy_cost.py": ["accuracy_cost.md"], "gregoire.py": ["gregoire.md"], "size_effect.py": ["size_effect_table.md"],
            "elastic.py": ["elastic_table.md"], "solve_profile.py": ["solve_profile.md"], "dt_stability.py": ["dt_stability.md"],
-           "explicit_ramp.py": ["explicit_ramp.md"], "hard_cases.py": ["hard_cases.md"], "blas.py": ["blas.md"],
+           "explicit_ramp.py": ["explicit_ramp.md"], "explicit_beam.py": ["explicit_beam.md"], "hard_cases.py": ["hard_cases.md"], "blas.py": ["blas.md"],
            "rc_beam.py": ["rc_beam.md"], "calibration.py": ["calibration.md"],
            "halfnotched.py": ["halfnotched.md"], "pc_refresh.py": ["pc_refresh.md"],
            "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"],
