@@ -4,7 +4,8 @@ never (built once, from the elastic tangent), or when the Krylov solver finds it
 3D models under GAMG, src/solve/pc_refresh.c); and, with the last, one Chebyshev smoothing step per
 multigrid level instead of two, and with every row of the matrix rewritten at each assembly. The Gregoire D = 100 mm half-notched beam, dx = 5 mm (14,000 nodes), to
 CMOD 0.12 mm, past its peak. The same beam under path following with IMPL-EX to CMOD 30 um: the path
-direction's Krylov solve started from the last direction (the default) or from zero, and whole assemblies.
+direction's and the first correction's Krylov solves started from the last ones (the default) or from zero, and
+whole assemblies.
 Path following's linear tolerances: matched to Newton's need (the default: the corrector's solve stops at
 half of Newton's tolerance, the predictor's direction at 1e-4) against fixed ones (-ksp_rtol 1e-8 for every
 solve) and the solves before that (fixed, and GMRES preconditioned on the left), on the D = 100 mm beam
@@ -48,9 +49,9 @@ CONFIGS = {"d100": [("rebuilt when stale (default)", []), ("every third assembly
                     ("rebuilt when stale, one smoothing step", ["-mg_levels_ksp_max_it", "1"]),
                     # every row of the AIJ matrix rewritten at every assembly (the earlier default; docs/solvers.md "Assembly")
                     ("rebuilt when stale, whole assembly", ["-pd_assembly_changed_rows", "false"])],
-           # IMPL-EX: two tight Krylov solves per step; the path direction's started from zero instead of from the last
-           # direction (docs/arclength.md), and every row of the matrix rewritten at each assembly
-           "d100_implex": [("default", []), ("direction from zero", ["-pd_arclength_guess", "false"]),
+           # IMPL-EX: two Krylov solves per step; the path direction's and the first correction's started from zero instead
+           # of from the last ones (docs/arclength.md), and every row of the matrix rewritten at each assembly
+           "d100_implex": [("default", []), ("solves from zero", ["-pd_arclength_guess", "false"]),
                            ("whole assembly", ["-pd_assembly_changed_rows", "false"]), IMPLEX_TIGHT, FIXED, PREVIOUS],
            "d50_arclength": [("default", []), FIXED, PREVIOUS],
            "d50_implex": [("default", []), IMPLEX_TIGHT, FIXED, PREVIOUS]}

@@ -593,7 +593,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .type = PD_OPTION_BOOL,
      .def  = "true",
      .when = PD_WHEN_PATH,
-     .help = "Start each iterative solve for the path direction from the last direction; false: from zero (docs/arclength.md)"},
+     .help = "Start each iterative solve for the path direction from the last direction, and an IMPL-EX step's first correction "
+             "from the last step's; false: from zero (docs/arclength.md)"},
     {.name     = "-pd_arclength_rtol",
      .type     = PD_OPTION_REAL,
      .def_note = "1e-7; 1e-5 for IMPL-EX steps",

@@ -75,10 +75,12 @@ typedef struct {
   PetscReal   implex;   /* the damage error per step IMPL-EX adapts to (-pd_arclength_implex, or the fallback's) */
   PetscReal   eq_rtol;  /* equilibrium: |R| below this times |f_int| (-pd_arclength_rtol, or PD_ARC_RTOL / PD_IMPLEX_RTOL) */
   PetscReal   len_prev; /* the last accepted step's length in the units of the next one */
-  PetscInt    rejects;  /* IMPL-EX steps made again shorter since the last accepted one */
-  Reversal    rev;      /* load reversal; while unloading (phase 1) the cmod gauge closes */
-  PetscBool   turn;     /* the next predictor goes against the last step (load reversal) */
-  const char *why;      /* why the last step failed */
+  Vec         xg;       /* IMPL-EX under the augmented corrector: the last step's first correction (-pd_arclength_guess) */
+  PetscBool   have_xg;
+  PetscInt    rejects; /* IMPL-EX steps made again shorter since the last accepted one */
+  Reversal    rev;     /* load reversal; while unloading (phase 1) the cmod gauge closes */
+  PetscBool   turn;    /* the next predictor goes against the last step (load reversal) */
+  const char *why;     /* why the last step failed */
   /* between steps */
   PetscInt  type;            /* constraint, or ARC_LOAD: plain control (the first step, and under auto until softening) */
   PetscReal dl, dl0, dlam;   /* arc length, the first one, load-factor increment under plain control */
@@ -429,9 +431,22 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug, a->rtol));
     PetscCall(VecScale(a->R, -1));
     if (aug) {
+      /* an IMPL-EX step's first correction takes up the forces its extrapolated damage releases, which move
+         along the crack from one step to the next much as the damage does: the last step's, scaled by the
+         ratio of the step lengths, starts the solve (as the last direction starts the direction's) */
+      const PetscBool first = a->xg && k == 0 ? PETSC_TRUE : PETSC_FALSE;
+      if (first && a->have_xg && a->len_prev > 0) {
+        PetscCall(VecAXPBY(a->aug.x, dl / a->len_prev, 0, a->xg));
+        PetscCall(KSPSetInitialGuessNonzero(a->aug.ksp, PETSC_TRUE));
+      }
       PetscCall(KSPSetTolerances(a->aug.ksp, a->rtol_aug, a->floor_aug ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol_aug, PETSC_DEFAULT,
                                  PETSC_DEFAULT));
       PetscCall(AugmentedUpdate(a, p, type, dl, PD_CORRECTOR_ATOL_SHARE * tol, &dlam, &n, &kr, &fine));
+      PetscCall(KSPSetInitialGuessNonzero(a->aug.ksp, PETSC_FALSE));
+      if (first && kr > 0) {
+        PetscCall(VecCopy(a->aug.x, a->xg));
+        a->have_xg = PETSC_TRUE;
+      }
     } else {
       PetscCall(KSPSetTolerances(a->ksp, a->rtol, a->floor_k ? PD_CORRECTOR_ATOL_SHARE * tol : a->atol, PETSC_DEFAULT, PETSC_DEFAULT));
       PetscCall(Solve(a, a->R, a->duI));
@@ -656,6 +671,7 @@ static PetscErrorCode StartImplex(Arc *a, PetscReal tol, PetscBool have_prev) {
   PetscFunctionBeginUser;
   a->implex  = tol;
   a->eq_rtol = m->scene->arc_rtol > 0 ? m->scene->arc_rtol : PD_IMPLEX_RTOL;
+  if (a->augmented && m->scene->arc_guess && !a->xg) PetscCall(VecDuplicate(a->aug.x, &a->xg));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
     a->kx_n[e]                  = m->kappa[e];
@@ -878,6 +894,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     PetscCall(PetscSNPrintf(rec->solver, sizeof rec->solver, "%s%sarclength(%s, %s)/%s/%s", from ? plain : "", from ? ", then " : "",
                             PDArcTypes[sc->arc_type], a.augmented ? "augmented" : "bordering", kt, pt));
   }
+  PetscCall(VecDestroy(&a.xg));
   if (a.augmented) PetscCall(PDAugmentedDestroy(&a.aug));
   PetscCall(KSPDestroy(&a.ksp));
   PetscCall(PDModelDestroyOperators(&a.J, &a.P));
