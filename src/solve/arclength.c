@@ -37,6 +37,9 @@ typedef struct {
    hardly changes while its corrector solve stops decades sooner (docs/arclength.md, "Linear tolerances") */
 #define PD_ARC_RTOL 1e-7
 #define PD_IMPLEX_RTOL 1e-5
+static PetscReal EquilibriumRtol(const PDScene *sc, PetscBool implex) {
+  return sc->arc_rtol > 0 ? sc->arc_rtol : (implex ? PD_IMPLEX_RTOL : PD_ARC_RTOL);
+}
 /* Krylov tolerance of the predictor's direction where the augmented corrector follows: the direction only
    starts the step and estimates the corrector's Schur complement, and the equilibrium the corrector
    reaches does not depend on it (docs/arclength.md, "Linear tolerances") */
@@ -670,7 +673,7 @@ static PetscErrorCode StartImplex(Arc *a, PetscReal tol, PetscBool have_prev) {
 
   PetscFunctionBeginUser;
   a->implex  = tol;
-  a->eq_rtol = m->scene->arc_rtol > 0 ? m->scene->arc_rtol : PD_IMPLEX_RTOL;
+  a->eq_rtol = EquilibriumRtol(m->scene, PETSC_TRUE);
   if (a->augmented && m->scene->arc_guess && !a->xg) PetscCall(VecDuplicate(a->aug.x, &a->xg));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     m->level[e] = m->level_n[e] = PD_BOND_LEVEL_OPEN;
@@ -697,10 +700,10 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   a.type      = ARC_LOAD;
   a.dlam      = sc->lambda_max / sc->steps;
   a.peak_sign = 1;
-  a.eq_rtol   = sc->arc_rtol > 0 ? sc->arc_rtol : PD_ARC_RTOL;
+  a.eq_rtol   = EquilibriumRtol(sc, PETSC_FALSE);
   /* what summary.json reports */
   rec->arc_rtol    = a.eq_rtol;
-  rec->implex_rtol = sc->arc_rtol > 0 ? sc->arc_rtol : PD_IMPLEX_RTOL;
+  rec->implex_rtol = EquilibriumRtol(sc, PETSC_TRUE);
   PetscCall(PDModelCreateOperators(m, &a.J, &a.P));
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
