@@ -13,6 +13,7 @@ typedef struct {
   PetscReal external, stored, dissipated, kinetic, damped;
   PetscInt  yielded;      /* bar segments yielded or broken */
   PetscReal steel_stress; /* largest |stress| in a bar segment (Pa) */
+  PetscReal slip;         /* largest |slip| of a bar node with bond slip (m) */
 } PDCurveRow;
 
 typedef struct {

@@ -23,7 +23,10 @@ PetscBool PDFamilyNext(PetscReal m, PetscInt dim, PetscInt st[4]);
 PetscReal PDFamilyPartialVolume(PetscReal m, PetscInt n2, PetscBool partial_volume);
 
 /* Nodes sit at cell centres of a regular grid. Global ids run x slowest, so a rank owns a contiguous
-   slab of x-layers and its ghosts are the layers within one horizon on either side. */
+   slab of x-layers and its ghosts are the layers within one horizon on either side. Bars with bond slip
+   have nodes of their own (bar nodes, docs/reinforcement.md): each x-layer ends with nslot slots after its
+   n[1] n[2] lattice nodes, one per bar node whose lattice node (the one it shadows, at the same place) lies
+   in the layer; slots no bar node takes are hollow. */
 typedef struct {
   MPI_Comm   comm;
   PetscInt   dim;
@@ -42,11 +45,25 @@ typedef struct {
   PetscInt   reach;     /* largest offset along one axis within the horizon: ghost layers per side */
   PetscInt   nstencil;  /* neighbour offsets within the horizon, the node's own excluded */
   PetscInt  *stencil;   /* [4*nstencil] di, dj, dk and n2 = di^2 + dj^2 + dk^2, lexicographic in (di, dj, dk) */
+  PetscInt   nslot;     /* bar-node slots per x-layer (0 without bond slip) */
+  PetscInt   layer;     /* global ids per x-layer: n[1] n[2] + nslot */
+  PetscInt   nunused;   /* slots no bar node takes (global): hollow */
+  /* bar nodes, the same table on every rank, by bar and then along the bar's chain */
+  PetscInt   nbarnodes;
+  PetscInt  *bn_bar;    /* [nbarnodes] the bar */
+  PetscInt  *bn_ijk;    /* [3*nbarnodes] lattice indices of the node it shadows */
+  PetscInt  *bn_gid;    /* [nbarnodes] its global id */
+  PetscReal *bn_length; /* [nbarnodes] its share of the bar's length (m) */
+  PetscInt  *slot_node; /* [n[0]*nslot] the bar node in each slot, or -1 */
+  PetscInt  *barnode;   /* [nlocal] the bar node a local node is, or -1 (NULL without bond slip) */
 } PDLattice;
 
 /* The material of bonds that never damage: a bar's segment across a notch (coefficient 0), a perfect
    bond's interface, a no-fail zone's bonds. Its law is elastic. */
 #define PD_MATERIAL_ELASTIC PD_MAX_MATERIALS
+/* The material of bar k's bond-slip links: their law is the bar's bond-slip law. */
+#define PD_MATERIAL_SLIP(k) (PD_MAX_MATERIALS + 1 + (k))
+#define PD_MATERIALS_ALL (PD_MAX_MATERIALS + 1 + PD_MAX_BARS)
 
 /* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
    A bond between two ranks is held by both; each adds only to its own rows. */
@@ -76,8 +93,15 @@ PetscErrorCode PDLatticeDestroy(PDLattice *);
 PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *, PetscInt bs, Vec *);
 /* Local index of the node with global id gid, or -1 when this rank holds it neither as owned nor as ghost. */
 PetscInt PDLatticeLocalIndex(const PDLattice *, PetscInt gid);
-/* Lattice indices (i, j, k) of the node with global id gid (k = 0 in 2D). */
+/* Lattice indices (i, j, k) of the node with global id gid (k = 0 in 2D); of a bar node, those of the node
+   it shadows. */
 void PDLatticeNodeIndices(const PDLattice *, PetscInt gid, PetscInt ijk[3]);
+/* Global id of the lattice node with indices ijk. */
+static inline PetscInt PDLatticeGid(const PDLattice *lat, const PetscInt ijk[3]) {
+  return ijk[0] * lat->layer + ijk[1] * lat->n[2] + ijk[2];
+}
+/* The bar-node table (bars.c): bar nodes of the bars with bond slip, their slots, nslot. */
+PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *, PDLattice *);
 /* Integer lattice offset of node l from node k, and its n2. */
 PetscInt PDLatticeOffset(const PDLattice *, PetscInt k, PetscInt l, PetscInt d[3]);
 void     PDLatticeInterpolation(const PDLattice *, const PetscReal p[3], PetscInt gid[8], PetscReal w[8], PetscInt *n);

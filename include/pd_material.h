@@ -19,6 +19,21 @@ typedef struct {
   PetscReal s0, s1, sc;
 } PDLawBond;
 
+/* The fib Model Code 2010 bond stress-slip envelope of ribbed bars (Sec. 6.1.1, pull-out, good bond), in
+   slip x >= 0 (m) and bond stress (Pa): tau_max (x/s1)^alpha up to s1, tau_max to s2, a linear fall to
+   tau_f at s3, tau_f beyond. The power law starts with an infinite slope: below x_lin = PD_SLIP_LINEAR s1
+   a parabola takes its place, with the curve's value and slope at x_lin (so that Newton meets no kink
+   there); k0 is its slope at zero slip, the bond's initial stiffness. */
+typedef struct {
+  PetscReal tau_max, tau_f, alpha;
+  PetscReal x[4]; /* x_lin, s1, s2, s3 */
+  PetscReal k0;   /* Pa/m */
+} PDSlipEnvelope;
+#define PD_SLIP_LINEAR 0.02
+void      PDSlipEnvelopeSetUp(const PDBar *, PDSlipEnvelope *);
+PetscReal PDSlipStress(const PDSlipEnvelope *, PetscReal x, PetscReal *slope);
+PetscReal PDSlipWork(const PDSlipEnvelope *, PetscReal x); /* int_0^x tau */
+
 /* A tension-softening bond law. Force g = c_b (1 - d(kappa)) s for s >= 0 and c_b s in compression,
    kappa the largest stretch reached; d is irreversible, unloading follows the secant. */
 typedef struct {
@@ -34,7 +49,14 @@ typedef struct {
   PetscBool per_bond;  /* critical stretch from lambda_ij c (Eq. 5.32 generalised) */
   PetscInt  sublevels; /* limiter levels on the softening branch */
   PetscReal confine;   /* rise of the thresholds per unit nodal compression (-pd_fc, docs/softening.md); 0: off */
+  /* PD_LAW_SLIP: the envelope, and the length of the links it acts on (m), which turns their stretch into slip. Its
+     force is symmetric, g = c (1 - d(kappa)) s with kappa the largest |s|, and unloading follows the secant */
+  PDSlipEnvelope slip;
+  PetscReal      slip_length;
 } PDLaw;
+
+/* The law of bar k's bond-slip links, whose length is link_length. */
+void PDLawSetUpSlip(const PDBar *, PetscReal link_length, PDLaw *);
 
 PetscErrorCode PDLawSetUp(const PDScene *, const PDMaterial *, PDLaw *);
 /* Moves a bond's three thresholds by d (crushing's rise under compression, -pd_fc). */

@@ -39,26 +39,28 @@ typedef struct {
   Vec             r_last;            /* the last residual, at ka_u and ka_lambda */
   PetscInt        residuals_by_rows; /* residuals so evaluated */
   PDModelRowIndex rows;
-  PDLaw           law[PD_MAX_MATERIALS + 1]; /* the materials', then an elastic one for PD_MATERIAL_ELASTIC */
-  PDSteel         steel[PD_MAX_BARS];        /* the steel of each bar */
-  PetscBool       softening;                 /* some bond law softens or breaks: bonds carry history */
-  PetscBool       gamg_after_icc;            /* ICC(0) failed on the tangent: algebraic multigrid from then on */
+  PDLaw           law[PD_MATERIALS_ALL]; /* the materials', an elastic one for PD_MATERIAL_ELASTIC, the bars' bond slip */
+  PDSteel         steel[PD_MAX_BARS];    /* the steel of each bar */
+  PetscBool       softening;             /* some bond law softens or breaks: bonds carry history */
+  PetscBool       gamg_after_icc;        /* ICC(0) failed on the tangent: algebraic multigrid from then on */
   /* per-bond history, allocated only when softening */
-  PetscReal     *kappa;                     /* largest stretch reached, committed at accepted steps */
-  unsigned char *level;                     /* PDBondLevel the limiter allows the bond to reach */
-  unsigned char *level_n;                   /* levels at the last accepted step, to restart a step */
-  PDLawBond     *thr;                       /* per-bond thresholds (critical-stretch correction), or NULL */
-  PetscReal     *shift;                     /* [nbonds] rise of thr under compression (-pd_fc), or NULL */
-  Vec            dilatation;                /* ghosted nodal dilatation for that rise, or NULL */
-  PetscReal     *stretch;                   /* per-bond scratch of the limiter and the history update */
-  unsigned char *branch;                    /* path following: per-bond PDBranch frozen for a stage, or NULL */
-  PetscInt       limiter_max;               /* bond events granted per Newton iteration; 0: no cap */
-  PetscReal      pc_reach;                  /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
-  PetscBool      commit_history;            /* explicit path: every force evaluation raises kappa */
-  PetscReal     *sp_n;                      /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
-  PetscBool     *ruptured_n;                /* [nseg] the segment has broken (committed) */
-  PetscReal     *dissipated_n;              /* [nseg] energy the segment dissipated (J): s_y E A L0 times its accumulated
-                                               plastic stretch, and the elastic energy it held when it broke */
+  PetscReal     *kappa;          /* largest stretch reached, committed at accepted steps */
+  unsigned char *level;          /* PDBondLevel the limiter allows the bond to reach */
+  unsigned char *level_n;        /* levels at the last accepted step, to restart a step */
+  PDLawBond     *thr;            /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscReal     *shift;          /* [nbonds] rise of thr under compression (-pd_fc), or NULL */
+  Vec            dilatation;     /* ghosted nodal dilatation for that rise, or NULL */
+  PetscReal     *stretch;        /* per-bond scratch of the limiter and the history update */
+  unsigned char *branch;         /* path following: per-bond PDBranch frozen for a stage, or NULL */
+  PetscInt       limiter_max;    /* bond events granted per Newton iteration; 0: no cap */
+  PetscReal      pc_reach;       /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
+  PetscBool      commit_history; /* explicit path: every force evaluation raises kappa */
+  PetscReal     *sp_n;           /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
+  PetscBool     *ruptured_n;     /* [nseg] the segment has broken (committed) */
+  PetscReal     *dissipated_n;   /* [nseg] energy the segment dissipated (J): s_y E A L0 times its accumulated
+                                    plastic stretch, and the elastic energy it held when it broke */
+  PetscInt  *slip_bond;          /* [nslip] the bond-slip links (bars with bond slip) */
+  PetscInt   nslip;
   PetscInt   yielded;                       /* bar segments with plastic stretch, or broken (global, counted once) */
   PetscInt64 broken;                        /* bonds broken (global, counted once) at the last accepted step */
   PetscInt64 softening_bonds;               /* bonds on the softening branch, not broken (global) */
@@ -96,6 +98,8 @@ typedef enum {
 #define PD_BRANCH_FLIPPED 4
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
+/* Mass of a local node (kg): its material's density times the cell, or for a bar node the steel of its share of the bar. */
+PetscReal      PDModelNodeMass(const PDModel *, PetscInt i);
 PetscErrorCode PDModelDestroy(PDModel *);
 /* Per-bond thresholds as built (strength scatter, surface correction), without crushing's rises. */
 void PDModelResetThresholds(PDModel *);
@@ -132,5 +136,6 @@ PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);
 PetscReal      PDUnitFromId(PetscInt64 id);
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
-/* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars). */
-PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress);
+/* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars), and the
+   largest |slip| of a bar node with bond slip along its bar, against the node it shadows (m; 0 without). */
+PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress, PetscReal *slip);

@@ -17,7 +17,8 @@ typedef enum { PD_MODEL_3D, PD_MODEL_PLANE_STRESS, PD_MODEL_PLANE_STRAIN } PDMod
 typedef enum { PD_INFLUENCE_CONSTANT, PD_INFLUENCE_CONICAL, PD_INFLUENCE_QUARTIC } PDInfluence;
 typedef enum { PD_KINEMATICS_SMALL, PD_KINEMATICS_FINITE } PDKinematics;
 typedef enum { PD_CALIBRATION_CONTINUUM, PD_CALIBRATION_STENCIL } PDCalibration;
-typedef enum { PD_LAW_ELASTIC, PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR } PDLawKind;
+/* PD_LAW_SLIP is no material's: the law of a bar's bond-slip links (docs/reinforcement.md) */
+typedef enum { PD_LAW_ELASTIC, PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR, PD_LAW_SLIP } PDLawKind;
 typedef enum { PD_STRETCH_EXACT, PD_STRETCH_MODIFIED } PDStretch;
 typedef enum { PD_CONTROL_DISPLACEMENT, PD_CONTROL_FORCE, PD_CONTROL_ARCLENGTH, PD_CONTROL_AUTO } PDControl;
 typedef enum { PD_ARC_SPHERICAL, PD_ARC_CYLINDRICAL, PD_ARC_CMOD, PD_ARC_DISSIPATION } PDArcType;
@@ -116,6 +117,11 @@ typedef struct {
   PetscReal hardening; /* post-yield tangent over E (0: perfectly plastic) */
   PetscReal rupture;   /* strain at which the bar breaks; 0: never */
   PetscBool perfect;   /* interface bonds (bar node to concrete node) never fail (the thesis); else they are concrete */
+  /* bond slip (docs/reinforcement.md): the bar on nodes of its own, tied to the concrete by the fib Model Code 2010
+     bond stress-slip law of ribbed bars in pull-out (good bond) */
+  PetscBool slip;
+  PetscReal fcm;      /* mean compressive strength of the concrete (Pa): tau_max = 2.5 sqrt(f_cm) in MPa */
+  PetscReal slips[3]; /* s1, s2, s3 (m): end of the rise, end of the plateau, end of the fall (the clear rib spacing) */
 } PDBar;
 
 typedef struct {
@@ -124,6 +130,7 @@ typedef struct {
   PDRegionKind kind;
   PetscBool    dof[3];    /* support/displacement: constrained components */
   PetscReal    vector[3]; /* displacement (m) or total force (N) at load factor 1 */
+  PetscBool    on_bars;   /* selects the nodes of bars with bond slip instead of the concrete's (-pd_regionK_nodes) */
 } PDRegion;
 
 typedef struct {
@@ -233,7 +240,7 @@ PetscErrorCode PDSceneOptionsHelp(MPI_Comm, const PDScene *, const char *note);
 /* The README's option table, in Markdown (-pd_help_markdown). */
 PetscErrorCode PDSceneOptionsMarkdown(MPI_Comm);
 PetscErrorCode PDSceneView(const PDScene *, PetscViewer);
-/* Whether a material has a law that damages bonds (every law but elastic). */
+/* Whether a material has a law that damages bonds (every law but elastic), or a bar's bond slips. */
 PetscBool PDSceneHasDamage(const PDScene *);
 /* Whether a region holds the node at x. A box with zero extent along an axis selects one layer of nodes:
    the nearest to its plane; a plane halfway between two layers takes the upper one, except on the

@@ -20,6 +20,19 @@ def main():
     ratios = [float(x) for x in re.findall(r"\|\|J - Jfd\|\|_F/\|\|J\|\|_F = ([0-9.eE+-]+)", r.stdout)]
     check(len(ratios) >= 1 and max(ratios) < 1e-6, "small kinematics: max ||J - Jfd||/||J|| = %.3e < 1e-6" % max(ratios))
     softening()
+    slip()
+
+
+def slip():
+    # The bond-slip links (options/pullout.opts at dx = 30 mm), pulled 2 mm in four increments through the rise,
+    # the plateau and into the fall of the bond law, with steel that stays elastic (its yield kink would
+    # straddle the differencing step). Backtracking keeps the iterates near the path.
+    r = run("pullout", "-pd_dx", "0.03", "-pd_steps", "4", "-pd_region1_displacement", "-0.002,0,0", "-pd_bar0_fy", "5e9",
+            "-pd_mat_type", "aij", "-pd_pc_reach", "0", "-snes_test_jacobian", "-snes_test_err", "1e-11", "-snes_linesearch_type", "bt")
+    ratios = [float(x) for x in re.findall(r"\|\|J - Jfd\|\|_F/\|\|J\|\|_F = ([0-9.eE+-]+)", r.stdout)]
+    s = r.summary
+    check(s["converged"] and abs(s["bars"]["max_slip_m"] - 0.002) < 1e-9, "bond slip: pulled to a slip of %.3f mm" % (1e3 * s["bars"]["max_slip_m"]))
+    check(len(ratios) >= 5 and max(ratios) < 1e-6, "bond slip: %d comparisons, max ||J - Jfd||/||J|| = %.3e < 1e-6" % (len(ratios), max(ratios)))
 
 
 def softening():

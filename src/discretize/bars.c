@@ -4,9 +4,9 @@
    f_y A_s exactly, whatever dx. */
 #include "pd_lattice.h"
 
-/* The chain of bar b: its base node's indices (the lattice node nearest to the bar's start) and the range
-   of k for which base + k step lies within the bar's ends (projected on its line) and in the lattice. */
-static void Chain(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscInt *kmin, PetscInt *kmax) {
+/* As Chain below, and along the bar's line: where node k = 0 sits (t0, m from the bar's start), the step
+   length and the bar's length. */
+static void ChainAlong(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscInt *kmin, PetscInt *kmax, PetscReal along[3]) {
   PetscReal u[3], len = 0, ls = 0, t0 = 0;
 
   for (PetscInt c = 0; c < 3; c++) {
@@ -32,6 +32,60 @@ static void Chain(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscI
       *kmax = PetscMin(*kmax, base[c] / -s);
     }
   }
+  along[0] = t0;
+  along[1] = ls;
+  along[2] = len;
+}
+
+/* The chain of bar b: its base node's indices (the lattice node nearest to the bar's start) and the range
+   of k for which base + k step lies within the bar's ends (projected on its line) and in the lattice. */
+static void Chain(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscInt *kmin, PetscInt *kmax) {
+  PetscReal along[3];
+  ChainAlong(lat, b, base, kmin, kmax, along);
+}
+
+PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
+  const PetscInt nl = lat->n[1] * lat->n[2];
+  PetscInt       n  = 0, *count;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    PetscInt base[3], kmin, kmax;
+    if (!sc->bar[k].slip) continue;
+    Chain(lat, &sc->bar[k], base, &kmin, &kmax);
+    n += PetscMax(0, kmax - kmin + 1);
+  }
+  lat->nbarnodes = n;
+  if (!n) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc4(n, &lat->bn_bar, 3 * n, &lat->bn_ijk, n, &lat->bn_gid, n, &lat->bn_length));
+  PetscCall(PetscCalloc1(lat->n[0], &count));
+  n = 0;
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    const PDBar *b = &sc->bar[k];
+    PetscInt     base[3], kmin, kmax;
+    PetscReal    along[3];
+    if (!b->slip) continue;
+    ChainAlong(lat, b, base, &kmin, &kmax, along);
+    for (PetscInt c = kmin; c <= kmax; c++, n++) {
+      const PetscReal t = along[0] + c * along[1], ls = along[1];
+      lat->bn_bar[n] = k;
+      for (PetscInt a = 0; a < 3; a++) lat->bn_ijk[3 * n + a] = base[a] + c * b->step[a];
+      /* a node carries the bond of the bar within half a step either side, up to the bar's ends: the shares add up to
+         the bar's length (a lattice that ends before the bar's end cuts it there) */
+      lat->bn_length[n] = (c == kmin ? PetscMin(0.5 * ls, t) : 0.5 * ls) + (c == kmax ? PetscMin(0.5 * ls, along[2] - t) : 0.5 * ls);
+      lat->bn_gid[n]    = count[lat->bn_ijk[3 * n]]++; /* its slot in the layer, for now */
+    }
+  }
+  for (PetscInt i = 0; i < lat->n[0]; i++) lat->nslot = PetscMax(lat->nslot, count[i]);
+  PetscCall(PetscMalloc1(lat->n[0] * lat->nslot, &lat->slot_node));
+  for (PetscInt q = 0; q < lat->n[0] * lat->nslot; q++) lat->slot_node[q] = -1;
+  for (PetscInt q = 0; q < n; q++) {
+    const PetscInt i                                = lat->bn_ijk[3 * q];
+    lat->slot_node[i * lat->nslot + lat->bn_gid[q]] = q;
+    lat->bn_gid[q] += i * (nl + lat->nslot) + nl;
+  }
+  PetscCall(PetscFree(count));
+  PetscFunctionReturn(0);
 }
 
 /* Whether bar b's chain holds the lattice node ijk within the bar's ends. */
@@ -68,7 +122,7 @@ PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, Petsc
   PDLatticeNodeIndices(lat, gi, p);
   PDLatticeNodeIndices(lat, gj, q);
   for (PetscInt k = 0; k < sc->nbars; k++)
-    if (SegmentOf(lat, &sc->bar[k], p, q)) return k;
+    if (!sc->bar[k].slip && SegmentOf(lat, &sc->bar[k], p, q)) return k;
   return -1;
 }
 
@@ -77,8 +131,27 @@ PetscInt PDBarHoldingNode(const PDScene *sc, const PDLattice *lat, PetscInt gid)
 
   PDLatticeNodeIndices(lat, gid, p);
   for (PetscInt k = 0; k < sc->nbars; k++)
-    if (Holds(lat, &sc->bar[k], p)) return k;
+    if (!sc->bar[k].slip && Holds(lat, &sc->bar[k], p)) return k;
   return -1;
+}
+
+/* The bar of the segment joining two local nodes: consecutive bar nodes of a bar with bond slip, or a pair
+   of lattice nodes on another bar's chain; -1 for any other pair. */
+static PetscInt SegmentBar(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j, const PetscInt p[3], const PetscInt q[3],
+                           PetscInt *clash) {
+  PetscInt bar = -1;
+
+  if (lat->barnode && (lat->barnode[i] >= 0 || lat->barnode[j] >= 0)) {
+    const PetscInt bi = lat->barnode[i], bj = lat->barnode[j];
+    return bi >= 0 && bj >= 0 && PetscAbsInt(bi - bj) == 1 && lat->bn_bar[bi] == lat->bn_bar[bj] ? lat->bn_bar[bi] : -1;
+  }
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    if (sc->bar[k].slip || !SegmentOf(lat, &sc->bar[k], p, q)) continue;
+    /* two bars sharing a pair of nodes would give it two segments: one bar with both areas is what is meant */
+    if (bar >= 0) *clash = PetscMax(*clash, bar * PD_MAX_BARS + k + 1);
+    bar = k;
+  }
+  return bar;
 }
 
 PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds *bd) {
@@ -98,13 +171,7 @@ PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds
     PetscInt p[3], q[3];
     PDLatticeNodeIndices(lat, lat->gid[bd->a[e]], p);
     PDLatticeNodeIndices(lat, lat->gid[bd->b[e]], q);
-    bd->seg[e] = -1;
-    for (PetscInt k = 0; k < sc->nbars; k++) {
-      if (!SegmentOf(lat, &sc->bar[k], p, q)) continue;
-      /* two bars sharing a pair of nodes would give it two segments: one bar with both areas is what is meant */
-      if (bd->seg[e] >= 0) clash = PetscMax(clash, bd->seg[e] * PD_MAX_BARS + k + 1);
-      bd->seg[e] = k;
-    }
+    bd->seg[e] = SegmentBar(sc, lat, bd->a[e], bd->b[e], p, q, &clash);
     if (bd->seg[e] >= 0) n++;
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &clash, 1, MPIU_INT, MPI_MAX, lat->comm));

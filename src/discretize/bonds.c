@@ -59,6 +59,189 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
   PetscFunctionReturn(0);
 }
 
+/* Bars with bond slip (docs/reinforcement.md). A bar node has three kinds of partner: the bar nodes before
+   and after it on its bar (the bar's segments), the lattice nodes one step of the bar either side of the
+   node it shadows (axial links, which carry the bond stress along the bar as a function of the slip), and
+   the lattice nodes one cross direction either side (ties, elastic, which hold the bar node to the
+   concrete across the bar). A link or tie has a length and a direction of its own, so that it is an
+   ordinary bond to every loop; a zero-length link to the shadowed node would not be. */
+typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_AXIAL, PD_BARPAIR_TIE } PDBarPair;
+#define PD_MAX_BAR_PARTNERS 8
+
+static PetscInt Gcd(PetscInt a, PetscInt b) {
+  a = PetscAbsInt(a);
+  b = PetscAbsInt(b);
+  while (b) {
+    const PetscInt t = a % b;
+    a                = b;
+    b                = t;
+  }
+  return a;
+}
+
+/* Integer directions across a step: one in 2D, two in 3D (the step crossed with its smallest axis, then
+   with that), each divided by the gcd of its components. */
+static PetscInt CrossDirections(const PetscInt st[3], PetscInt dim, PetscInt p[2][3]) {
+  PetscInt n = dim == 2 ? 1 : 2, a = 0;
+  if (dim == 2) {
+    p[0][0] = -st[1];
+    p[0][1] = st[0];
+    p[0][2] = 0;
+  } else {
+    PetscInt e[3] = {0, 0, 0};
+    for (PetscInt c = 1; c < 3; c++)
+      if (PetscAbsInt(st[c]) < PetscAbsInt(st[a])) a = c;
+    e[a]    = 1;
+    p[0][0] = st[1] * e[2] - st[2] * e[1];
+    p[0][1] = st[2] * e[0] - st[0] * e[2];
+    p[0][2] = st[0] * e[1] - st[1] * e[0];
+    p[1][0] = st[1] * p[0][2] - st[2] * p[0][1];
+    p[1][1] = st[2] * p[0][0] - st[0] * p[0][2];
+    p[1][2] = st[0] * p[0][1] - st[1] * p[0][0];
+  }
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt g = Gcd(Gcd(p[k][0], p[k][1]), p[k][2]);
+    for (PetscInt c = 0; c < 3; c++) p[k][c] /= g;
+  }
+  return n;
+}
+
+static PetscBool InVoid(const PDScene *sc, const PetscReal x[3]) {
+  for (PetscInt v = 0; v < sc->nvoids; v++)
+    if (PDGeometryContains(&sc->voids[v].where, x, sc)) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The partners of bar node q, as global ids, and their kinds. Lattice nodes outside the lattice, in a void
+   or behind a notch are left out: the bar does not bond to concrete across a cut. The same on every rank. */
+static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q, PetscInt gid[PD_MAX_BAR_PARTNERS],
+                            PDBarPair kind[PD_MAX_BAR_PARTNERS]) {
+  const PDBar    *b   = &sc->bar[lat->bn_bar[q]];
+  const PetscInt *c0  = &lat->bn_ijk[3 * q];
+  const PetscReal tol = 1e-9 * lat->dx;
+  PetscInt        n   = 0, p[3][3], cross[2][3], np;
+  PetscReal       x0[3];
+
+  for (PetscInt d = -1; d <= 1; d += 2) /* segments */
+    if (q + d >= 0 && q + d < lat->nbarnodes && lat->bn_bar[q + d] == lat->bn_bar[q]) {
+      gid[n]  = lat->bn_gid[q + d];
+      kind[n] = PD_BARPAIR_SEGMENT;
+      n++;
+    }
+  for (PetscInt c = 0; c < 3; c++) {
+    p[0][c] = b->step[c];
+    x0[c]   = c < lat->dim ? lat->origin[c] + c0[c] * lat->dx : 0;
+  }
+  np = 1 + CrossDirections(b->step, lat->dim, cross);
+  for (PetscInt k = 1; k < np; k++)
+    for (PetscInt c = 0; c < 3; c++) p[k][c] = cross[k - 1][c];
+  for (PetscInt k = 0; k < np; k++)
+    for (PetscInt d = -1; d <= 1; d += 2) {
+      PetscInt  ijk[3];
+      PetscReal x[3];
+      PetscBool out = PETSC_FALSE, cut = PETSC_FALSE;
+      for (PetscInt c = 0; c < 3; c++) {
+        ijk[c] = c0[c] + d * p[k][c];
+        out    = out || ijk[c] < 0 || ijk[c] >= lat->n[c] ? PETSC_TRUE : PETSC_FALSE;
+        x[c]   = c < lat->dim ? lat->origin[c] + ijk[c] * lat->dx : 0;
+      }
+      if (out || InVoid(sc, x)) continue;
+      for (PetscInt m = 0; m < sc->nnotches && !cut; m++) cut = NotchCuts(&sc->notch[m], x0, x, sc->dim, tol);
+      if (cut) continue;
+      gid[n]  = PDLatticeGid(lat, ijk);
+      kind[n] = k ? PD_BARPAIR_TIE : PD_BARPAIR_AXIAL;
+      n++;
+    }
+  return n;
+}
+
+/* The constants of a pair with a bar node at one end at least (local nodes i, j): a segment has no
+   concrete (its steel is set up with the other segments, bars.c); an axial link of bar node q carries the
+   bond force tau(slip) times the bar's perimeter times q's share of the bar's length, split over q's
+   axial links; a tie is as stiff across the bar as the concrete cell, E V / dx^2, split over its two. */
+static void BarPairConstants(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j, PetscReal *coef, PetscInt *material) {
+  const PetscInt  q = lat->barnode[i] >= 0 ? lat->barnode[i] : lat->barnode[j], c = lat->barnode[i] >= 0 ? j : i;
+  const PDBar    *b = &sc->bar[lat->bn_bar[q]];
+  PetscInt        d[3], n2 = PDLatticeOffset(lat, i, j, d), gid[PD_MAX_BAR_PARTNERS], np, nax = 0, along = 1;
+  PDBarPair       kind[PD_MAX_BAR_PARTNERS];
+  const PetscReal len = PetscSqrtReal((PetscReal)n2) * lat->dx;
+
+  *coef     = 0;
+  *material = PD_MATERIAL_ELASTIC;
+  if (lat->barnode[i] >= 0 && lat->barnode[j] >= 0) return;
+  np = BarPartners(sc, lat, q, gid, kind);
+  for (PetscInt k = 0; k < np; k++) nax += kind[k] == PD_BARPAIR_AXIAL;
+  for (PetscInt a = 0; a < 3; a++) along = along && PetscAbsInt(d[a]) == PetscAbsInt(b->step[a]) ? 1 : 0;
+  if (along) {
+    PDSlipEnvelope env;
+    PDSlipEnvelopeSetUp(b, &env);
+    *coef     = env.k0 * b->count * PETSC_PI * b->diameter * lat->bn_length[q] * len / nax;
+    *material = PD_MATERIAL_SLIP(lat->bn_bar[q]);
+  } else
+    *coef = sc->material[lat->material[c]].E * lat->cell_volume / (lat->dx * lat->dx) * len / 2;
+}
+
+/* Pairs with a bar node that the owned node i starts (FindPairs' rule: a pair of two owned nodes from the
+   lower global id). The lattice nodes' pairs come from rev, the links and ties of the local bar nodes
+   sorted by lattice node: rev[2k] the lattice node's global id, rev[2k + 1] the bar node's. */
+static PetscErrorCode PushBarPairs(const PDScene *sc, const PDLattice *lat, PetscInt i, const PetscInt *rev, PetscInt nrev, PairList *pl) {
+  const PetscInt gi = lat->gid[i], first = lat->gid_start, last = lat->gid_start + lat->nowned;
+  PetscInt       gid[PD_MAX_BAR_PARTNERS], n = 0, lo = 0, hi = nrev;
+  PDBarPair      kind[PD_MAX_BAR_PARTNERS];
+
+  PetscFunctionBeginUser;
+  if (lat->barnode[i] >= 0)
+    n = BarPartners(sc, lat, lat->barnode[i], gid, kind);
+  else {
+    while (lo < hi) { /* the first entry of gi */
+      const PetscInt mid = (lo + hi) / 2;
+      if (rev[2 * mid] < gi)
+        lo = mid + 1;
+      else
+        hi = mid;
+    }
+    for (; lo < nrev && rev[2 * lo] == gi && n < PD_MAX_BAR_PARTNERS; lo++) gid[n++] = rev[2 * lo + 1];
+  }
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt j = PDLatticeLocalIndex(lat, gid[k]);
+    if (gid[k] < gi && gid[k] >= first && gid[k] < last) continue;
+    PetscCheck(j >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "bar pair beyond the ghost layers");
+    PetscCall(PairListPush(pl, i, j));
+  }
+  PetscFunctionReturn(0);
+}
+
+static int ComparePairs(const void *pa, const void *pb) {
+  const PetscInt *a = (const PetscInt *)pa, *b = (const PetscInt *)pb;
+  return a[0] != b[0] ? (a[0] < b[0] ? -1 : 1) : (a[1] < b[1] ? -1 : a[1] > b[1]);
+}
+
+/* rev for PushBarPairs: every link and tie of the local bar nodes, by lattice node. */
+static PetscErrorCode BarPairsByLatticeNode(const PDScene *sc, const PDLattice *lat, PetscInt **rev, PetscInt *nrev) {
+  PetscInt n = 0;
+
+  PetscFunctionBeginUser;
+  *rev  = NULL;
+  *nrev = 0;
+  if (!lat->barnode) PetscFunctionReturn(0);
+  PetscCall(PetscMalloc1(2 * PD_MAX_BAR_PARTNERS * PetscMax(1, lat->nbarnodes), rev));
+  for (PetscInt l = 0; l < lat->nlocal; l++) {
+    PetscInt  gid[PD_MAX_BAR_PARTNERS], np;
+    PDBarPair kind[PD_MAX_BAR_PARTNERS];
+    if (lat->barnode[l] < 0) continue;
+    np = BarPartners(sc, lat, lat->barnode[l], gid, kind);
+    for (PetscInt k = 0; k < np; k++) {
+      if (kind[k] == PD_BARPAIR_SEGMENT) continue;
+      (*rev)[2 * n]     = gid[k];
+      (*rev)[2 * n + 1] = lat->gid[l];
+      n++;
+    }
+  }
+  qsort(*rev, n, 2 * sizeof(PetscInt), ComparePairs);
+  *nrev = n;
+  PetscFunctionReturn(0);
+}
+
 /* Neighbour search: for every owned node outside the voids, every node within the horizon, outside the
    voids too, that no notch separates. The family is the lattice stencil (design point 28) laid on the
    node's integer lattice indices, so the set depends neither on where the domain sits nor on the slab
@@ -67,13 +250,20 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
   const PetscReal tol   = 1e-9 * sc->dx;
   const PetscInt  first = lat->gid_start, last = lat->gid_start + lat->nowned;
 
+  PetscInt *rev, nrev;
+
   PetscFunctionBeginUser;
   *ncut_local = 0;
+  PetscCall(BarPairsByLatticeNode(sc, lat, &rev, &nrev));
   for (PetscInt i = 0; i < lat->nowned; i++) {
     const PetscInt   gi = first + i;
     const PetscReal *xi = &lat->x[3 * i];
     PetscInt         c[3];
     if (lat->hollow[i]) continue;
+    if (lat->barnode && lat->barnode[i] >= 0) {
+      PetscCall(PushBarPairs(sc, lat, i, rev, nrev, pl));
+      continue;
+    }
     PDLatticeNodeIndices(lat, gi, c);
     for (PetscInt s = 0; s < lat->nstencil; s++) {
       const PetscInt *st = &lat->stencil[4 * s];
@@ -81,7 +271,10 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
       PetscInt        gj, j;
       PetscBool       cuts = PETSC_FALSE;
       if (ni < 0 || ni >= lat->n[0] || nj < 0 || nj >= lat->n[1] || nk < 0 || nk >= lat->n[2]) continue;
-      gj = (ni * lat->n[1] + nj) * lat->n[2] + nk;
+      {
+        const PetscInt ijk[3] = {ni, nj, nk};
+        gj                    = PDLatticeGid(lat, ijk);
+      }
       /* each owned pair once (lower global id first); a pair with a ghost is held by both ranks */
       if (gj < gi && gj >= first && gj < last) continue;
       j = PDLatticeLocalIndex(lat, gj);
@@ -102,7 +295,9 @@ static PetscErrorCode FindPairs(const PDScene *sc, const PDLattice *lat, PairLis
       }
       PetscCall(PairListPush(pl, i, j));
     }
+    if (lat->barnode) PetscCall(PushBarPairs(sc, lat, i, rev, nrev, pl));
   }
+  PetscCall(PetscFree(rev));
   PetscFunctionReturn(0);
 }
 
@@ -172,7 +367,7 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
     for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
       const PetscInt e = bd->inc_bond[p];
       PetscInt       st[4];
-      if (beta[e] == 0) continue; /* a bar-only pair: counted as cut */
+      if (beta[e] == 0) continue; /* a bar-only pair (counted as cut), or a pair with a bar node */
       st[3] = PDLatticeOffset(lat, bd->a[e], bd->b[e], st);
       FamilyShares(sc, lat, st, w);
       for (PetscInt k = 0; k < PD_SHARES; k++) v[PD_SHARES * i + k] += w[k];
@@ -186,7 +381,8 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscScalar *va = &v[PD_SHARES * bd->a[e]], *vb = &v[PD_SHARES * bd->b[e]];
     PetscReal          lam = 1;
-    if (stencil) {
+    if (beta[e] == 0) { /* no concrete, or a bar node's link or tie: nothing to correct */
+    } else if (stencil) {
       PetscInt  d[3];
       PetscReal n2 = PDLatticeOffset(lat, bd->a[e], bd->b[e], d), qa = 0, qb = 0;
       for (PetscInt a = 0; a < 3; a++) {
@@ -276,8 +472,14 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
     const PetscBool bar_only = bd->b[e] < 0 ? PETSC_TRUE : PETSC_FALSE;
     PetscInt        i, j, mi, mj, d[3], n2, m;
     if (bar_only) bd->b[e] = -1 - bd->b[e];
-    i  = bd->a[e];
-    j  = bd->b[e];
+    i = bd->a[e];
+    j = bd->b[e];
+    if (lat->barnode && (lat->barnode[i] >= 0 || lat->barnode[j] >= 0)) {
+      BarPairConstants(sc, lat, i, j, &bd->coef[e], &bd->material[e]);
+      beta[e] = 0;
+      if (PDBondCountedHere(lat, bd, e)) nonce++;
+      continue;
+    }
     mi = lat->material[i];
     mj = lat->material[j];
     /* length and partial volume from the exact lattice offset, in units of dx */

@@ -56,9 +56,16 @@ static PetscErrorCode BuildStencil(PDLattice *lat, PetscReal m) {
 }
 
 void PDLatticeNodeIndices(const PDLattice *lat, PetscInt gid, PetscInt ijk[3]) {
-  ijk[2] = gid % lat->n[2];
-  ijk[1] = (gid / lat->n[2]) % lat->n[1];
-  ijk[0] = gid / (lat->n[1] * lat->n[2]);
+  const PetscInt r = gid % lat->layer;
+
+  ijk[0] = gid / lat->layer;
+  if (r >= lat->n[1] * lat->n[2]) { /* a slot: the bar node's shadow, or the layer's first node for an unused one */
+    const PetscInt b = lat->slot_node[ijk[0] * lat->nslot + r - lat->n[1] * lat->n[2]];
+    for (PetscInt c = 0; c < 3; c++) ijk[c] = b >= 0 ? lat->bn_ijk[3 * b + c] : (c ? 0 : ijk[0]);
+    return;
+  }
+  ijk[2] = r % lat->n[2];
+  ijk[1] = r / lat->n[2];
 }
 
 static PetscInt LayerStart(PetscInt nx, PetscMPIInt size, PetscMPIInt rank) {
@@ -76,7 +83,7 @@ static void NodePosition(const PDLattice *lat, PetscInt gid, PetscReal x[3]) {
 
 /* The ghost ranges: global ids [g[0], g[1]) below the owned slab and [g[2], g[3]) above it. */
 static void GhostRanges(const PDLattice *lat, PetscInt g[4]) {
-  const PetscInt layer = lat->n[1] * lat->n[2];
+  const PetscInt layer = lat->layer;
 
   g[0] = PetscMax(0, lat->layer_start - lat->reach) * layer;
   g[1] = lat->layer_start * layer;
@@ -105,7 +112,7 @@ PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt 
 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
-  PetscInt    layer, g[4], nvoid = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
+  PetscInt    layer, g[4], nvoid = 0, nunused = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
   PetscInt    innofail_mine[PD_MAX_NOFAIL]   = {0}, innofail[PD_MAX_NOFAIL];
   PetscInt    inplate_mine[PD_MAX_MATERIALS] = {0}, inplate[PD_MAX_MATERIALS];
 
@@ -124,12 +131,14 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
     /* when dx does not divide the box, the lattice is centred in it */
     lat->origin[a] = a < sc->dim ? sc->domain[a] + 0.5 * (len - lat->n[a] * sc->dx) + 0.5 * sc->dx : 0;
   }
-  PetscCheck((PetscInt64)lat->n[0] * lat->n[1] * lat->n[2] < PETSC_MAX_INT / 3, comm, PETSC_ERR_USER_INPUT,
+  PetscCall(PDLatticeSetUpBarNodes(sc, lat));
+  lat->layer = lat->n[1] * lat->n[2] + lat->nslot;
+  PetscCheck((PetscInt64)lat->n[0] * lat->layer < PETSC_MAX_INT / 3, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_dx: %g gives too many nodes for 32-bit indices", (double)sc->dx);
   PetscCheck(lat->n[0] >= size, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: %" PetscInt_FMT " layers along x cannot be shared by %d ranks",
              lat->n[0], size);
-  lat->nglobal     = lat->n[0] * lat->n[1] * lat->n[2];
-  layer            = lat->n[1] * lat->n[2];
+  lat->nglobal     = lat->n[0] * lat->layer;
+  layer            = lat->layer;
   lat->layer_start = LayerStart(lat->n[0], size, rank);
   lat->layer_end   = LayerStart(lat->n[0], size, rank + 1);
   lat->nowned      = (lat->layer_end - lat->layer_start) * layer;
@@ -141,13 +150,22 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   lat->nlocal = lat->nowned + lat->nghost;
   PetscCall(PetscMalloc5(lat->nlocal, &lat->gid, 3 * lat->nlocal, &lat->x, lat->nlocal, &lat->material, lat->nlocal, &lat->hollow,
                          lat->nlocal, &lat->nofail));
+  if (lat->nslot) PetscCall(PetscMalloc1(lat->nlocal, &lat->barnode));
   for (PetscInt id = g[0]; id < g[3]; id++) {
     const PetscInt l = PDLatticeLocalIndex(lat, id);
     lat->gid[l]      = id;
   }
   for (PetscInt l = 0; l < lat->nlocal; l++) {
+    const PetscInt r = lat->gid[l] % layer - lat->n[1] * lat->n[2];
     NodePosition(lat, lat->gid[l], &lat->x[3 * l]);
     lat->material[l] = 0;
+    if (lat->barnode) lat->barnode[l] = r >= 0 ? lat->slot_node[(lat->gid[l] / layer) * lat->nslot + r] : -1;
+    if (r >= 0) { /* a slot: a bar node, steel only, or hollow */
+      lat->hollow[l] = lat->barnode[l] < 0 ? PETSC_TRUE : PETSC_FALSE;
+      lat->nofail[l] = PETSC_FALSE;
+      if (l < lat->nowned && lat->hollow[l]) nunused++;
+      continue;
+    }
     for (PetscInt m = sc->nmaterials + sc->nplates - 1; m > 0; m--) /* plates over materials, later over earlier */
       if (PDGeometryContains(&sc->material[m].where, &lat->x[3 * l], sc)) {
         lat->material[l] = m;
@@ -169,12 +187,14 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
       }
   }
   PetscCall(MPIU_Allreduce(&nvoid, &lat->nvoid, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(MPIU_Allreduce(&nunused, &lat->nunused, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(invoid_mine, invoid, PD_MAX_VOIDS, MPIU_INT, MPI_SUM, comm));
   for (PetscInt v = 0; v < sc->nvoids; v++)
     PetscCheck(invoid[v] > 0, comm, PETSC_ERR_USER_INPUT,
                "Option %s_%s: the void contains no node (it must hold at least one node's cell centre)", sc->voids[v].option,
                sc->voids[v].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
-  PetscCheck(lat->nvoid < lat->nglobal, comm, PETSC_ERR_USER_INPUT, "Options -pd_void*: the voids leave no material in the domain");
+  PetscCheck(lat->nvoid + lat->nunused + lat->nbarnodes < lat->nglobal, comm, PETSC_ERR_USER_INPUT,
+             "Options -pd_void*: the voids leave no material in the domain");
   PetscCall(MPIU_Allreduce(innofail_mine, innofail, PD_MAX_NOFAIL, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(inplate_mine, inplate, PD_MAX_MATERIALS, MPIU_INT, MPI_SUM, comm));
   for (PetscInt p = 0; p < sc->nplates; p++)
@@ -190,6 +210,9 @@ PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscFunctionBeginUser;
   PetscCall(PetscFree5(lat->gid, lat->x, lat->material, lat->hollow, lat->nofail));
   PetscCall(PetscFree(lat->stencil));
+  PetscCall(PetscFree(lat->barnode));
+  PetscCall(PetscFree4(lat->bn_bar, lat->bn_ijk, lat->bn_gid, lat->bn_length));
+  PetscCall(PetscFree(lat->slot_node));
   PetscFunctionReturn(0);
 }
 
@@ -218,8 +241,9 @@ void PDLatticeInterpolation(const PDLattice *lat, const PetscReal p[3], PetscInt
   for (PetscInt i = 0; i < m[0]; i++)
     for (PetscInt j = 0; j < m[1]; j++)
       for (PetscInt k = 0; k < m[2]; k++) {
-        gid[*n] = ((i0[0] + i) * lat->n[1] + i0[1] + j) * lat->n[2] + i0[2] + k;
-        w[*n]   = (i ? t[0] : 1 - t[0]) * (j ? t[1] : 1 - t[1]) * (k ? t[2] : 1 - t[2]);
+        const PetscInt ijk[3] = {i0[0] + i, i0[1] + j, i0[2] + k};
+        gid[*n]               = PDLatticeGid(lat, ijk);
+        w[*n]                 = (i ? t[0] : 1 - t[0]) * (j ? t[1] : 1 - t[1]) * (k ? t[2] : 1 - t[2]);
         (*n)++;
       }
 }

@@ -477,6 +477,39 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
   PetscFunctionReturn(0);
 }
 
+/* The rows' largest slip (scenes with bond slip), apart from the rows, so that the rows of checkpoints
+   written without it still read. */
+static PetscErrorCode SlipRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscViewer v, PetscBool write) {
+  Vec          S, all;
+  VecScatter   toall;
+  PetscScalar *a;
+  PetscInt     lo, hi;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, nrows), &S));
+  PetscCall(PetscObjectSetName((PetscObject)S, "curve_slip"));
+  if (write) {
+    PetscCall(VecGetOwnershipRange(S, &lo, &hi));
+    PetscCall(VecGetArray(S, &a));
+    for (PetscInt r = lo; r < hi && r < nrows; r++) a[r - lo] = rec->rows[r].slip;
+    PetscCall(VecRestoreArray(S, &a));
+    PetscCall(VecView(S, v));
+    PetscCall(VecDestroy(&S));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(VecLoad(S, v));
+  PetscCall(VecScatterCreateToAll(S, &toall, &all));
+  PetscCall(VecScatterBegin(toall, S, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toall, S, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGetArray(all, &a));
+  for (PetscInt r = 0; r < nrows && r < rec->nrows; r++) rec->rows[r].slip = PetscRealPart(a[r]);
+  PetscCall(VecRestoreArray(all, &a));
+  PetscCall(VecScatterDestroy(&toall));
+  PetscCall(VecDestroy(&all));
+  PetscCall(VecDestroy(&S));
+  PetscFunctionReturn(0);
+}
+
 /* Curve rows: every rank holds all of them; the file holds them once. */
 static PetscErrorCode WriteRows(MPI_Comm comm, const PDRecord *rec, PetscViewer v) {
   Vec          R;
@@ -564,6 +597,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(Totals(m, rec, v, PETSC_TRUE));
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", real_name[k], PETSC_REAL, &real[k]));
   PetscCall(WriteRows(comm, rec, v));
+  if (m->lat->nbarnodes) PetscCall(SlipRows(comm, (PDRecord *)rec, nrows, v, PETSC_TRUE));
   if (m->softening) PetscCall(WriteHistory(m, kappa_prev, v));
   if (m->scene->nbars) PetscCall(WriteSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {
@@ -593,6 +627,7 @@ PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, Pet
   /* a scalar the file lacks (written before the driver kept it) reads as 0 */
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &real[k]));
   PetscCall(ReadRows(comm, rec, nrows, v));
+  if (m->lat->nbarnodes) PetscCall(SlipRows(comm, rec, nrows, v, PETSC_FALSE));
   if (m->softening) PetscCall(ReadHistory(m, kappa_prev, v));
   if (m->scene->nbars) PetscCall(ReadSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {

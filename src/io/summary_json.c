@@ -108,26 +108,35 @@ static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
 static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const PDRecord *rec) {
   const PDScene *sc    = m->scene;
   PetscInt       first = -1;
-  PetscReal      smax  = 0;
+  PetscReal      smax = 0, slip = 0;
 
   PetscFunctionBeginUser;
   if (!sc->nbars) PetscFunctionReturn(0);
   for (PetscInt r = 0; r < rec->nrows; r++) {
     if (first < 0 && rec->rows[r].yielded > 0) first = r;
     smax = PetscMax(smax, rec->rows[r].steel_stress);
+    slip = PetscMax(slip, rec->rows[r].slip);
   }
   PetscCall(PetscFPrintf(comm, fp, "  \"bars\": {\n    \"list\": ["));
   for (PetscInt k = 0; k < sc->nbars; k++) {
     const PDBar    *b = &sc->bar[k];
     const PetscReal A = PDBarArea(b);
-    PetscCall(PetscFPrintf(comm, fp,
-                           "%s{\"bar\": %" PetscInt_FMT ", \"area_m2\": %.10e, \"axial_stiffness_N\": %.10e, \"yield_force_N\": %.10e}",
-                           k ? ", " : "", k, (double)A, (double)(b->E * A), (double)(b->fy * A)));
+    PetscCall(PetscFPrintf(
+        comm, fp,
+        "%s{\"bar\": %" PetscInt_FMT ", \"bond\": \"%s\", \"area_m2\": %.10e, \"axial_stiffness_N\": %.10e, \"yield_force_N\": %.10e",
+        k ? ", " : "", k, b->slip ? "slip" : (b->perfect ? "perfect" : "concrete"), (double)A, (double)(b->E * A), (double)(b->fy * A)));
+    if (b->slip) {
+      PDSlipEnvelope env;
+      PDSlipEnvelopeSetUp(b, &env);
+      PetscCall(PetscFPrintf(comm, fp, ", \"tau_max_Pa\": %.10e, \"slips_m\": [%.10e, %.10e, %.10e]", (double)env.tau_max,
+                             (double)b->slips[0], (double)b->slips[1], (double)b->slips[2]));
+    }
+    PetscCall(PetscFPrintf(comm, fp, "}"));
   }
   PetscCall(PetscFPrintf(comm, fp,
                          "],\n    \"segments\": %" PetscInt_FMT ",\n    \"yielded_segments\": %" PetscInt_FMT
-                         ",\n    \"max_steel_stress_Pa\": %.10e,\n",
-                         m->bonds->nseg_global, m->yielded, (double)smax));
+                         ",\n    \"max_steel_stress_Pa\": %.10e,\n    \"bar_nodes\": %" PetscInt_FMT ",\n    \"max_slip_m\": %.10e,\n",
+                         m->bonds->nseg_global, m->yielded, (double)smax, m->lat->nbarnodes, (double)slip));
   if (first >= 0)
     PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": {\"step\": %" PetscInt_FMT ", \"load_N\": %.10e, \"disp_m\": %.10e}\n  },\n",
                            rec->rows[first].step, (double)rec->rows[first].load, (double)rec->rows[first].disp));
@@ -190,11 +199,13 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
     }
     PetscCall(PetscFPrintf(comm, fp, "]},\n"));
   }
-  /* nodes hold material; the lattice's void nodes (pinned, no bonds) are counted apart, and in the dofs */
+  /* nodes hold material (bar nodes included); the lattice's void nodes and unused bar-node slots (pinned, no
+     bonds) are counted apart, and in the dofs */
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"nodes\": %" PetscInt_FMT ",\n  \"void_nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt64_FMT
                          ",\n  \"dofs\": %" PetscInt_FMT ",\n",
-                         m->lat->nglobal - m->lat->nvoid, m->lat->nvoid, m->bonds->nbonds_global, m->lat->nglobal * m->bs));
+                         m->lat->nglobal - m->lat->nvoid - m->lat->nunused, m->lat->nvoid + m->lat->nunused, m->bonds->nbonds_global,
+                         m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));
   PetscCall(PetscFPrintf(comm, fp, "  \"dx_m\": %.10e,\n  \"horizon_ratio\": %.10e,\n  \"influence\": \"%s\",\n  \"kinematics\": \"%s\",\n",
                          (double)sc->dx, (double)sc->horizon_ratio, PDInfluences[sc->influence], PDKinematicsNames[sc->kinematics]));

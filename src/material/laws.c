@@ -33,6 +33,10 @@ static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t) {
     t->sc = 10 * gamma * G / (pcd5 * t->s0 * (1 + gamma * b)) + t->s0;
     t->s1 = t->s0 + (t->sc - t->s0) / gamma;
   } break;
+  case PD_LAW_SLIP: /* it leaves the initial slope at once and never breaks; s1 the end of the rise */
+    t->s0 = 0;
+    t->s1 = law->slip.x[1] / law->slip_length;
+    break;
   case PD_LAW_NONLINEAR: {
     /* corrected Eq. 5.21 (THEORY.md): the printed form is too large by alpha s0. (1 - e^k)/Q is
        evaluated as (e^-k - 1)/(Q e^-k) so that k = 25 does not overflow anything. */
@@ -89,6 +93,15 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) 
   PetscFunctionReturn(0);
 }
 
+void PDLawSetUpSlip(const PDBar *b, PetscReal link_length, PDLaw *law) {
+  *law = (PDLaw){0};
+  law->kind        = PD_LAW_SLIP;
+  law->sublevels   = 1;
+  law->slip_length = link_length;
+  PDSlipEnvelopeSetUp(b, &law->slip);
+  Thresholds(law, 0, &law->nominal);
+}
+
 void PDLawBondThresholds(const PDLaw *law, PetscReal lambda, PDLawBond *t) {
   Thresholds(law, 5 * law->geo * (law->per_bond ? lambda : 1), t);
 }
@@ -111,6 +124,12 @@ PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, Pet
     }
     *dd = b * s0 * sc / ((sc - s1) * kappa * kappa);
     return 1 - b * (s0 / kappa) * (sc - kappa) / (sc - s1);
+  }
+  case PD_LAW_SLIP: { /* 1 - d = tau(x) / (k0 x) at slip x = kappa L */
+    const PetscReal L = law->slip_length, x = kappa * L, k0 = law->slip.k0;
+    PetscReal       dtau, tau = PDSlipStress(&law->slip, x, &dtau);
+    *dd = -L * (dtau * x - tau) / (k0 * x * x);
+    return 1 - tau / (k0 * x);
   }
   case PD_LAW_NONLINEAR: { /* Eq. 5.16 */
     const PetscReal k = law->k, a = law->alpha, x = (kappa - s0) / (sc - s0), ek = PetscExpReal(-k * x), den = 1 - PetscExpReal(-k);
@@ -136,6 +155,8 @@ PetscReal PDLawEnvelopeWork(const PDLaw *law, const PDLawBond *t, PetscReal kapp
     if (x <= s1) return 0.5 * s0 * s0 + 0.5 * (x - s0) * (s0 + s0 * (1 + (b - 1) * (x - s0) / (s1 - s0)));
     return 0.5 * s0 * s0 + 0.5 * (s1 - s0) * (1 + b) * s0 + 0.5 * (x - s1) * (b * s0 + b * s0 * (sc - x) / (sc - s1));
   }
+  case PD_LAW_SLIP: /* g/c = tau(x L) / (k0 L) */
+    return PDSlipWork(&law->slip, x * law->slip_length) / (law->slip.k0 * law->slip_length * law->slip_length);
   case PD_LAW_NONLINEAR: { /* g/c = s0 h((x - s0)/(sc - s0)) */
     const PetscReal k = law->k, a = law->alpha, den = 1 - PetscExpReal(-k), X = (x - s0) / (sc - s0);
     const PetscReal Ih = (X - (X - (1 - PetscExpReal(-k * X)) / k) / den + a * (X - 0.5 * X * X)) / (1 + a);
@@ -151,7 +172,7 @@ PetscReal PDLawWorkOfFracture(const PDLaw *law) {
 }
 
 PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PetscInt level) {
-  if (law->kind == PD_LAW_ELASTIC) return PETSC_MAX_REAL;
+  if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP) return PETSC_MAX_REAL; /* the limiter holds neither */
   if (law->kind == PD_LAW_LINEAR) return level <= 1 ? t->sc : PETSC_MAX_REAL; /* no softening branch to divide */
   if (level > law->sublevels) return PETSC_MAX_REAL;
   if (level == PD_BOND_ELASTIC) return t->s0;

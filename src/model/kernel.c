@@ -15,41 +15,46 @@ static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDL
 
 /* Scalar force g(s) of a bond's concrete and its slope. History kappa_n and the level the limiter allows
    give the effective largest stretch; a bond held below a threshold stays on its current branch.
-   Compression is linear elastic whatever the damage (cracks do not interpenetrate). */
+   Compression is linear elastic whatever the damage (cracks do not interpenetrate). A bar's bond-slip link
+   (PD_LAW_SLIP) is the same law in a = |s|: symmetric in the slip, its history the largest |s|, and
+   never held by the limiter. */
 static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, PetscReal *g, PetscReal *gp) {
   const PetscReal c = m->bonds->coef[e];
   const PDLaw    *law;
-  PetscReal       kap, cap, d, dd;
+  PetscReal       kap, cap, d, dd, a;
+  PetscBool       sym;
 
-  if (!m->softening || s < 0) {
+  if (!m->softening) {
     *g  = c * s;
     *gp = c;
     return;
   }
   law = &m->law[m->bonds->material[e]];
-  if (law->kind == PD_LAW_ELASTIC) {
+  sym = law->kind == PD_LAW_SLIP ? PETSC_TRUE : PETSC_FALSE;
+  if ((s < 0 && !sym) || law->kind == PD_LAW_ELASTIC) {
     *g  = c * s;
     *gp = c;
     return;
   }
+  a = sym ? PetscAbsReal(s) : s;
   {
     const PDLawBond *t       = PDModelBondThresholds(m, e, law);
-    PetscBool        loading = s >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
+    PetscBool        loading = a >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
     /* below the damage threshold (and below the breaking one, which a coarse bilinear bond can have
        lower): elastic on every branch and at every level, the state of most bonds */
-    if (PetscMax(m->kappa[e], s) < PetscMin(t->s0, t->sc)) {
+    if (PetscMax(m->kappa[e], a) < PetscMin(t->s0, t->sc)) {
       *g  = c * s;
       *gp = c;
       return;
     }
-    kap = EffectiveHistory(m, e, law, t, s, &cap);
+    kap = EffectiveHistory(m, e, law, t, a, &cap);
     switch (m->branch ? m->branch[e] & PD_BRANCH_MASK : PD_BRANCH_FREE) {
     case PD_BRANCH_SECANT:
       kap     = m->kappa[e];
       loading = PETSC_FALSE;
       break;
     case PD_BRANCH_ENVELOPE:
-      kap     = s >= cap ? cap * (1 - 1e-12) : s;
+      kap     = a >= cap ? cap * (1 - 1e-12) : a;
       loading = PETSC_TRUE;
       break;
     case PD_BRANCH_KINK:
@@ -60,9 +65,9 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
     }
     d  = PDLawDamage(law, t, kap, &dd);
     *g = c * (1 - d) * s;
-    /* loading on the active branch: consistent slope c((1 - d) - s d'); otherwise the secant */
-    if (m->scene->tangent == PD_TANGENT_CONSISTENT && loading && s < cap)
-      *gp = c * ((1 - d) - s * dd);
+    /* loading on the active branch: consistent slope c((1 - d) - a d'); otherwise the secant */
+    if (m->scene->tangent == PD_TANGENT_CONSISTENT && loading && a < cap)
+      *gp = c * ((1 - d) - a * dd);
     else
       *gp = c * (1 - d);
   }
@@ -333,8 +338,10 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
     {
       const PDLaw     *law = &m->law[bd->material[e]];
       const PDLawBond *t   = PDModelBondThresholds(m, e, law);
-      PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(s, 0), &cap), d = PDLawDamage(law, t, kap, &dd);
-      es += 0.5 * c * (s < 0 ? 1 : 1 - d) * s * s * L0;
+      const PetscBool  sym = law->kind == PD_LAW_SLIP ? PETSC_TRUE : PETSC_FALSE; /* a bond-slip link: history |s| */
+      PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, sym ? PetscAbsReal(s) : PetscMax(s, 0), &cap);
+      PetscReal        d = PDLawDamage(law, t, kap, &dd);
+      es += 0.5 * c * (s < 0 && !sym ? 1 : 1 - d) * s * s * L0;
       ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
     }
   }
@@ -461,20 +468,21 @@ PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) 
       StretchesSmall(3, bd, lat->x, u, s);
     else
       StretchesSmall(m->bs, bd, lat->x, u, s);
-    PetscFunctionReturn(0);
-  }
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    PetscReal dir[3], L0, L, q;
-    BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L,
-              &s[e], &q);
-  }
+  } else
+    for (PetscInt e = 0; e < bd->nbonds; e++) {
+      PetscReal dir[3], L0, L, q;
+      BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L,
+                &s[e], &q);
+    }
+  /* a bond-slip link's history is its largest |s|: the history's users (limiter, commit, branches) see |s| */
+  for (PetscInt k = 0; k < m->nslip; k++) s[m->slip_bond[k]] = PetscAbsReal(s[m->slip_bond[k]]);
   PetscFunctionReturn(0);
 }
 
 /* Commits one bond's state at stretch s: the largest stretch of its concrete (the explicit path, which has
    no limiter, commits at every force evaluation) and its bar segment's plastic stretch and rupture. */
 void PDModelCommitBond(PDModel *m, PetscInt e, PetscReal s) {
-  if (m->softening) m->kappa[e] = PetscMax(m->kappa[e], s);
+  if (m->softening) m->kappa[e] = PetscMax(m->kappa[e], m->law[m->bonds->material[e]].kind == PD_LAW_SLIP ? PetscAbsReal(s) : s);
   if (m->bonds->seg && m->bonds->seg[e] >= 0) PDModelCommitSegment(m, m->bonds->seg[e], s);
 }
 
@@ -506,6 +514,26 @@ PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
     BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
     SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
     smax = PetscMax(smax, PetscAbsReal(g) / PDBarArea(b));
+  }
+  return smax;
+}
+
+/* Largest |slip| of the owned bar nodes: their displacement along the bar less that of the node they shadow
+   (the same layer: owned too). */
+PetscReal PDModelSlipLocal(PDModel *m, const PetscScalar *u) {
+  const PDLattice *lat  = m->lat;
+  PetscReal        smax = 0;
+  for (PetscInt i = 0; lat->barnode && i < lat->nowned; i++) {
+    const PetscInt  q = lat->barnode[i], bs = m->bs;
+    const PetscInt *st;
+    PetscInt        c;
+    PetscReal       len = 0, s = 0;
+    if (q < 0) continue;
+    st = m->scene->bar[lat->bn_bar[q]].step;
+    c  = PDLatticeLocalIndex(lat, PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
+    for (PetscInt a = 0; a < 3; a++) len += (PetscReal)(st[a] * st[a]);
+    for (PetscInt a = 0; a < bs; a++) s += st[a] * PetscRealPart(u[bs * i + a] - u[bs * c + a]);
+    smax = PetscMax(smax, PetscAbsReal(s) / PetscSqrtReal(len));
   }
   return smax;
 }

@@ -75,6 +75,7 @@ PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
 void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
+PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
 
 /* A bond's stretch thresholds: its own (scatter, surface correction) or its law's nominal ones. */
 static inline const PDLawBond *PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {

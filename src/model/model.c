@@ -32,9 +32,11 @@ static PetscErrorCode GhostedValues(Vec g, PetscReal *out) {
 }
 
 /* Diagonal of a node's 3x3 stiffness block, sum over its bonds of (c/|xi|) e e^T. */
-/* A region selects the nodes of its box or cylinder that hold material: a void's nodes carry nothing. */
-static PetscBool InRegion(const PDGeometry *where, const PDLattice *lat, PetscInt i, const PDScene *sc) {
-  return !lat->hollow[i] && PDGeometryContains(where, &lat->x[3 * i], sc) ? PETSC_TRUE : PETSC_FALSE;
+/* A region selects the nodes of its box or cylinder that hold material (a void's nodes carry nothing):
+   the concrete's, or those of the bars with bond slip (-pd_regionK_nodes). */
+static PetscBool InRegion(const PDRegion *reg, const PDLattice *lat, PetscInt i, const PDScene *sc) {
+  const PetscBool bar = lat->barnode && lat->barnode[i] >= 0 ? PETSC_TRUE : PETSC_FALSE;
+  return !lat->hollow[i] && bar == reg->on_bars && PDGeometryContains(&reg->where, &lat->x[3 * i], sc) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3]) {
@@ -71,17 +73,18 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
   for (PetscInt r = 0; r < sc->nregions; r++) {
     const PDRegion *reg = &sc->region[r];
     for (PetscInt i = 0; i < lat->nowned; i++)
-      if (InRegion(&reg->where, lat, i, sc)) count[r]++;
+      if (InRegion(reg, lat, i, sc)) count[r]++;
   }
   PetscCall(MPIU_Allreduce(count, gcount, PD_MAX_REGIONS, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt r = 0; r < sc->nregions; r++)
-    PetscCheck(gcount[r] > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the region contains no nodes (outside voids)",
-               sc->region[r].option, sc->region[r].where.shape == PD_SHAPE_BOX ? "box" : "cylinder");
+    PetscCheck(gcount[r] > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the region contains no %s (outside voids)",
+               sc->region[r].option, sc->region[r].where.shape == PD_SHAPE_BOX ? "box" : "cylinder",
+               sc->region[r].on_bars ? "node of a bar with bond slip (-pd_barK_bond slip)" : "nodes");
   for (PetscInt r = 0; r < sc->nregions; r++) {
     const PDRegion *reg = &sc->region[r];
     if (reg->kind == PD_REGION_MONITOR) continue;
     for (PetscInt i = 0; i < lat->nowned; i++) {
-      if (!InRegion(&reg->where, lat, i, sc)) continue;
+      if (!InRegion(reg, lat, i, sc)) continue;
       for (PetscInt a = 0; a < bs; a++) {
         const PetscInt k = bs * i + a;
         if (reg->kind == PD_REGION_FORCE) {
@@ -101,7 +104,7 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
     const PDRegion *reg = &sc->region[r];
     if (reg->kind != PD_REGION_FORCE) continue;
     for (PetscInt i = 0; i < lat->nowned; i++)
-      if (InRegion(&reg->where, lat, i, sc))
+      if (InRegion(reg, lat, i, sc))
         for (PetscInt a = 0; a < bs; a++) {
           const PetscInt k = bs * i + a;
           if (reg->vector[a] != 0 && owner[k] > r) conflict = PetscMin(conflict, owner[k] * PD_MAX_REGIONS + r);
@@ -164,13 +167,13 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   PetscCall(VecGetArray(m->load_pattern, &lp));
   PetscCall(VecGetArray(m->disp_pattern, &dp));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    if (InRegion(&load->where, lat, i, sc))
+    if (InRegion(load, lat, i, sc))
       for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[a];
-    if (InRegion(&dreg->where, lat, i, sc)) n++;
+    if (InRegion(dreg, lat, i, sc)) n++;
   }
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt i = 0; i < lat->nowned; i++)
-    if (InRegion(&dreg->where, lat, i, sc))
+    if (InRegion(dreg, lat, i, sc))
       for (PetscInt a = 0; a < bs; a++) dp[bs * i + a] = dir[a] / gn;
   PetscCall(VecRestoreArray(m->load_pattern, &lp));
   PetscCall(VecRestoreArray(m->disp_pattern, &dp));
@@ -246,7 +249,13 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->bonds = bd;
   m->bs    = sc->dim;
   for (PetscInt k = 0; k < sc->nmaterials; k++) PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
-  for (PetscInt k = 0; k < sc->nbars; k++) PDSteelSetUp(&sc->bar[k], &m->steel[k]);
+  for (PetscInt k = 0; k < sc->nbars; k++) {
+    const PetscInt *st = sc->bar[k].step;
+    PDSteelSetUp(&sc->bar[k], &m->steel[k]);
+    if (sc->bar[k].slip)
+      PDLawSetUpSlip(&sc->bar[k], PetscSqrtReal((PetscReal)(st[0] * st[0] + st[1] * st[1] + st[2] * st[2])) * sc->dx,
+                     &m->law[PD_MATERIAL_SLIP(k)]);
+  }
   m->softening = PDSceneHasDamage(sc);
   m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening && !sc->nbars) ? PETSC_TRUE : PETSC_FALSE;
   PetscCheck(sc->pc_reach <= 0 || !m->linear, lat->comm, PETSC_ERR_USER_INPUT,
@@ -299,6 +308,15 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     }
     PDModelResetThresholds(m);
   }
+  for (PetscInt pass = 0; pass < 2 && lat->barnode; pass++) { /* the bond-slip links: count, then list */
+    m->nslip = 0;
+    for (PetscInt e = 0; e < bd->nbonds; e++)
+      if (m->law[bd->material[e]].kind == PD_LAW_SLIP) {
+        if (pass) m->slip_bond[m->nslip] = e;
+        m->nslip++;
+      }
+    if (!pass) PetscCall(PetscMalloc1(PetscMax(1, m->nslip), &m->slip_bond));
+  }
   if (sc->nbars) {
     if (!m->softening) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->stretch)); /* the commit's scratch */
     PetscCall(
@@ -311,6 +329,17 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     PetscCall(MPIU_Allreduce(&mine, &m->history_bytes, 1, MPIU_INT64, MPI_SUM, lat->comm));
   }
   PetscFunctionReturn(0);
+}
+
+#define PD_STEEL_DENSITY 7850.0 /* kg/m^3 */
+
+PetscReal PDModelNodeMass(const PDModel *m, PetscInt i) {
+  const PDLattice *lat = m->lat;
+  if (lat->barnode && lat->barnode[i] >= 0) {
+    const PetscInt q = lat->barnode[i];
+    return PD_STEEL_DENSITY * PDBarArea(&m->scene->bar[lat->bn_bar[q]]) * lat->bn_length[q];
+  }
+  return m->scene->material[lat->material[i]].rho * lat->cell_volume;
 }
 
 void PDModelResetThresholds(PDModel *m) {
@@ -338,6 +367,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->cmod_pattern));
   PetscCall(VecDestroy(&m->f_work));
   PetscCall(PetscFree2(m->fixed_local, m->uref_local));
+  PetscCall(PetscFree(m->slip_bond));
   PetscCall(PetscFree(m->ka));
   PetscCall(VecDestroy(&m->ka_u)); /* left by a static run that stopped on an error */
   PetscCall(VecDestroy(&m->r_last));
@@ -678,18 +708,21 @@ PetscErrorCode PDModelElasticApply(PDModel *m, Vec x, Vec y) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress) {
+PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress, PetscReal *slip) {
   const PetscScalar *ul;
   Vec                loc;
-  PetscReal          mine;
+  PetscReal          mine[2], all[2];
 
   PetscFunctionBeginUser;
-  *stress = 0;
+  *stress = *slip = 0;
   if (!m->scene->nbars) PetscFunctionReturn(0);
   PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
-  mine = PDModelSteelStressLocal(m, ul);
+  mine[0] = PDModelSteelStressLocal(m, ul);
+  mine[1] = PDModelSlipLocal(m, ul);
   PetscCall(PDModelRestoreLocal(m, &ul, &loc));
-  PetscCall(MPIU_Allreduce(&mine, stress, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
+  PetscCall(MPIU_Allreduce(mine, all, 2, MPIU_REAL, MPIU_MAX, m->lat->comm));
+  *stress = all[0];
+  *slip   = all[1];
   PetscFunctionReturn(0);
 }
 
@@ -759,6 +792,7 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
       names[n++] = "steel_rupture";
       break;
     }
+  if (m->lat->nbarnodes) names[n++] = "bond_slip";
   if (sc->kinematics == PD_KINEMATICS_FINITE) names[n++] = "geometric_nonlinearity";
   if (sc->explicit_mode) names[n++] = "inertia";
   return n;

@@ -206,6 +206,8 @@ PetscErrorCode PDSceneCreateFromOptions(MPI_Comm comm, PDScene *sc) {
 PetscBool PDSceneHasDamage(const PDScene *sc) {
   for (PetscInt k = 0; k < sc->nmaterials; k++)
     if (sc->material[k].law != PD_LAW_ELASTIC) return PETSC_TRUE;
+  for (PetscInt k = 0; k < sc->nbars; k++) /* a bond-slip law softens past its plateau */
+    if (sc->bar[k].slip) return PETSC_TRUE;
   return PETSC_FALSE;
 }
 

@@ -51,6 +51,33 @@ static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
   PetscFunctionReturn(0);
 }
 
+/* The bond-slip law of a bar (fib Model Code 2010, Sec. 6.1.1, pull-out, good bond): tau_max from f_cm, which
+   defaults to the concrete's compressive strength where -pd_fc gives one; s1 = 1 mm and s2 = 2 mm as the code,
+   s3 the clear rib spacing, which the code leaves to the bar (0.6 d by default, a typical rib spacing). */
+static PetscErrorCode ReadSlip(PetscOptionItems *PetscOptionsObject, PDScene *sc, PDBar *b) {
+  char      opt[64];
+  PetscInt  n = 3;
+  PetscBool set;
+
+  PetscFunctionBeginUser;
+  b->fcm = sc->material[0].fc;
+  PetscCall(BarReal(PetscOptionsObject, sc, b, "_fcm", &b->fcm));
+  PetscCheck(b->fcm > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_fcm is required for a bar with bond slip (the concrete's mean compressive strength, Pa), unless -pd_fc gives it",
+             b->option);
+  b->slips[0] = 1e-3;
+  b->slips[1] = 2e-3;
+  b->slips[2] = 0.6 * b->diameter;
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_slips", b->option));
+  PetscCall(PDOptionRealArray(PetscOptionsObject, sc, opt, b->slips, &n, &set));
+  PetscCheck(!set || n == 3, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected three slips s1,s2,s3 (m), got %" PetscInt_FMT, opt,
+             n);
+  PetscCheck(b->slips[0] > 0 && b->slips[0] <= b->slips[1] && b->slips[1] < b->slips[2], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s: the slips must satisfy 0 < s1 <= s2 < s3, got %g,%g,%g m", opt, (double)b->slips[0], (double)b->slips[1],
+             (double)b->slips[2]);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc, PetscInt k) {
   PDBar    *b = &sc->bar[k];
   char      opt[64];
@@ -89,7 +116,9 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
     PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_bond", b->option));
     PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &bond, NULL));
     b->perfect = bond == 1 ? PETSC_TRUE : PETSC_FALSE;
+    b->slip    = bond == 2 ? PETSC_TRUE : PETSC_FALSE;
   }
+  if (b->slip) PetscCall(ReadSlip(PetscOptionsObject, sc, b));
   PetscCheck(b->rupture == 0 || b->rupture > b->fy / b->E, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option %s_rupture: the rupture strain lies above the yield strain f_y/E = %g, got %g", b->option, (double)(b->fy / b->E),
              (double)b->rupture);

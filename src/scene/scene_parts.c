@@ -222,6 +222,12 @@ static PetscErrorCode ReadRegion(PetscOptionItems *PetscOptionsObject, PDScene *
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &kind, &set));
   PetscCheck(set, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required (support, displacement, force or monitor)", opt);
   r->kind = (PDRegionKind)kind;
+  {
+    PetscInt nodes = 0;
+    PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_nodes", r->option));
+    PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &nodes, NULL));
+    r->on_bars = nodes == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_dofs", r->option));
   PetscCall(ReadDofs(PetscOptionsObject, sc, opt, r->dof, &set));
   if (r->kind == PD_REGION_SUPPORT || r->kind == PD_REGION_DISPLACEMENT)

@@ -117,7 +117,7 @@ const char *PDSchemaWhenText(PDOptionWhen w) {
   case PD_WHEN_CONTROL:
     return "load or displacement control (-pd_control displacement or force, implicit)";
   case PD_WHEN_FALLBACK:
-    return "load or displacement control on a scene with damage (a law other than elastic)";
+    return "load or displacement control on a scene with damage (a law other than elastic, or bond slip)";
   case PD_WHEN_EXPLICIT:
     return "the explicit path (-pd_mode explicit)";
   case PD_WHEN_PATH:
@@ -132,6 +132,8 @@ const char *PDSchemaWhenText(PDOptionWhen w) {
     return "path following with -pd_unload_at";
   case PD_WHEN_FAILURE_SEARCH:
     return "the failure search (-pd_failure_search)";
+  case PD_WHEN_SLIP:
+    return "bars with bond slip (-pd_barK_bond slip)";
   }
   return "";
 }
@@ -210,6 +212,8 @@ PetscBool PDSchemaActive(const PDOptionSpec *s, PetscInt k, const PDScene *sc) {
     return path && sc->unload_at > 0 ? PETSC_TRUE : PETSC_FALSE;
   case PD_WHEN_FAILURE_SEARCH:
     return sc->failure_search;
+  case PD_WHEN_SLIP:
+    return s->family == PD_FAMILY_BAR && sc->bar[k].slip ? PETSC_TRUE : PETSC_FALSE;
   }
   return PETSC_FALSE;
 }

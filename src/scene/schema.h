@@ -28,7 +28,8 @@ typedef enum {
   PD_WHEN_PATH_LINEAR,
   PD_WHEN_AUGMENTED,
   PD_WHEN_UNLOAD,
-  PD_WHEN_FAILURE_SEARCH
+  PD_WHEN_FAILURE_SEARCH,
+  PD_WHEN_SLIP /* a bar with bond slip */
 } PDOptionWhen;
 
 typedef struct {

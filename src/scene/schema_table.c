@@ -5,7 +5,8 @@
 static const char *const Forms[]  = {"zaccariotto", "bobaru", NULL};
 static const char *const Solves[] = {"bordering", "augmented", NULL};
 static const char *const Axes[]   = {"x", "y", "z", NULL};
-static const char *const Bonds[]  = {"concrete", "perfect", NULL};
+static const char *const Bonds[]  = {"concrete", "perfect", "slip", NULL};
+static const char *const Nodes[]  = {"concrete", "bars", NULL};
 
 #define MAT PD_FAMILY_MATERIAL
 #define NOTCH PD_FAMILY_NOTCH
@@ -245,6 +246,13 @@ const PDOptionSpec PDOptionSchema[] = {
      .values   = PDRegionKinds,
      .def_note = "required",
      .help     = "What the region does: support, displacement, force, monitor"},
+    {.name   = "_nodes",
+     .family = REGION,
+     .type   = PD_OPTION_ENUM,
+     .values = Nodes,
+     .def    = "concrete",
+     .help   = "Which nodes in the region it acts on: the concrete's, or the nodes of bars with bond slip (to pull a bar, or to hold "
+               "its end)"},
     {.name     = "_dofs",
      .family   = REGION,
      .type     = PD_OPTION_STRING,
@@ -339,8 +347,27 @@ const PDOptionSpec PDOptionSchema[] = {
      .type   = PD_OPTION_ENUM,
      .values = Bonds,
      .def    = "concrete",
-     .help   = "Bond of bar and concrete: concrete (the bonds from the bar's nodes to concrete nodes follow the concrete law and may crack "
-               "along the bar) or perfect (those bonds stay elastic, the thesis' choice; across a crack they carry tension too)"},
+     .help   = "Bond of bar and concrete: concrete (the bar shares the concrete's nodes, and the bonds from them to other concrete nodes "
+               "follow the concrete law and may crack along the bar), perfect (those bonds stay elastic, the thesis' choice; across a crack "
+               "they carry tension too) or slip (the bar on nodes of its own, tied to the concrete by the fib Model Code 2010 bond "
+               "stress-slip law)"},
+    {.name     = "_fcm",
+     .family   = BAR,
+     .type     = PD_OPTION_REAL,
+     .unit     = "Pa",
+     .def_note = "-pd_fc, else required",
+     .range    = "(0, inf)",
+     .when     = PD_WHEN_SLIP,
+     .help     = "Bond slip: mean compressive strength of the concrete, which sets the bond strength tau_max = 2.5 sqrt(f_cm) (MPa; fib "
+                 "Model Code 2010, pull-out, good bond); the residual bond stress is 0.4 tau_max"},
+    {.name     = "_slips",
+     .family   = BAR,
+     .type     = PD_OPTION_REALS,
+     .unit     = "m",
+     .def_note = "1e-3,2e-3 and 0.6 times the diameter",
+     .when     = PD_WHEN_SLIP,
+     .help     = "Bond slip: s1,s2,s3, the slips where the bond stress reaches tau_max (rising as (s/s1)^0.4), leaves its plateau, and "
+                 "ends its linear fall to the residual stress (s3: the clear rib spacing)"},
     /* no-fail zones */
     {.name     = "_box",
      .family   = NOFAIL,

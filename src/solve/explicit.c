@@ -70,7 +70,7 @@ static PetscErrorCode Eq46TimeStep(PDModel *m, PetscReal *dt) {
     if (j < lat->nowned) k[j] += PDBondStiffness(bd, e) / L;
   }
   for (PetscInt i = 0; i < lat->nowned; i++)
-    if (k[i] > 0) dtmin = PetscMin(dtmin, PetscSqrtReal(2 * m->scene->material[lat->material[i]].rho * lat->cell_volume / k[i]));
+    if (k[i] > 0) dtmin = PetscMin(dtmin, PetscSqrtReal(2 * PDModelNodeMass(m, i) / k[i]));
   PetscCall(PetscFree(k));
   PetscCall(MPIU_Allreduce(&dtmin, dt, 1, MPIU_REAL, MPIU_MIN, lat->comm));
   PetscFunctionReturn(0);
@@ -324,7 +324,7 @@ static PetscErrorCode PostStep(TS ts) {
     row.wall         = now - c->rec->t_start;
     PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
     PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
-    PetscCall(PDModelSteelStress(m, u, &row.steel_stress));
+    PetscCall(PDModelSteelStress(m, u, &row.steel_stress, &row.slip));
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
     if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;
@@ -351,7 +351,7 @@ static PetscErrorCode Mass(PDModel *m, Vec mass) {
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArray(mass, &ms));
-  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) ms[k] = m->scene->material[m->lat->material[k / m->bs]].rho * m->lat->cell_volume;
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) ms[k] = PDModelNodeMass(m, k / m->bs);
   PetscCall(VecRestoreArray(mass, &ms));
   PetscFunctionReturn(0);
 }

@@ -156,7 +156,7 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
     const PDLaw     *law = &m->law[bd->material[e]];
     const PDLawBond *t   = PDModelBondThresholds(m, e, law);
-    if (law->kind == PD_LAW_ELASTIC || !PDBondCountedHere(m->lat, bd, e)) continue;
+    if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP || !PDBondCountedHere(m->lat, bd, e)) continue;
     if (m->kappa[e] >= t->sc)
       count[0]++;
     else if (Softened(m, e))
@@ -243,17 +243,25 @@ PetscErrorCode PDModelRestoreLevels(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
-/* Nodal damage: the mean damage of a node's bonds (0 intact, 1 all broken). */
+/* Nodal damage: the mean damage of a node's concrete bonds (0 intact, 1 all broken); a bar node's links and
+   ties are no concrete and its damage is 0. */
 PetscErrorCode PDModelNodalDamage(PDModel *m, Vec damage) {
-  const PDBonds *bd = m->bonds;
-  PetscScalar   *d;
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  PetscScalar     *d;
 
   PetscFunctionBeginUser;
   PetscCall(VecGetArray(damage, &d));
   for (PetscInt i = 0; i < m->lat->nowned; i++) {
-    const PetscInt n   = bd->inc_start[i + 1] - bd->inc_start[i];
-    PetscReal      sum = 0;
-    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) sum += PDModelBondDamage(m, bd->inc_bond[p]);
+    PetscInt  n   = 0;
+    PetscReal sum = 0;
+    for (PetscInt p = bd->inc_start[i]; p < bd->inc_start[i + 1]; p++) {
+      const PetscInt e = bd->inc_bond[p];
+      if (lat->barnode && (lat->barnode[bd->a[e]] >= 0 || lat->barnode[bd->b[e]] >= 0)) continue;
+      sum += PDModelBondDamage(m, e);
+      n++;
+    }
+    if (lat->barnode && lat->barnode[i] >= 0) n = 1;
     d[i] = m->lat->hollow[i] ? PD_NAN : (n ? sum / n : 1); /* a void's nodes are no material: NaN, which viewers blank */
   }
   PetscCall(VecRestoreArray(damage, &d));

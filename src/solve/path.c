@@ -66,7 +66,7 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   row->external     = p->w_ext;
   row->kinetic = row->damped = 0;
   PetscCall(PDModelEnergy(m, u, &row->stored, &row->dissipated));
-  PetscCall(PDModelSteelStress(m, u, &row->steel_stress));
+  PetscCall(PDModelSteelStress(m, u, &row->steel_stress, &row->slip));
   PetscCall(PDRecordAddRow(rec, row));
   rec->steps = p->step;
   PetscFunctionReturn(0);

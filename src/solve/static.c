@@ -97,7 +97,7 @@ static PetscErrorCode ConfigureSolver(PDModel *m, SNES snes, PDPCRefresh *refres
      linearly: it gets up to 200 iterations per increment. Around a steel bar Newton cycles on the kinks
      of the softening bonds for longer before it settles: bars raise the budget to 60
      (docs/reinforcement.md) */
-  PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, PETSC_DEFAULT,
+  PetscCall(SNESSetTolerances(snes, m->force_scale * 1e-10, m->linear ? 1e-8 : 1e-6, 0,
                               m->softening && m->scene->tangent == PD_TANGENT_SECANT ? 200 : (m->scene->nbars ? 60 : 20), -1));
   PetscCall(PDSolverPreferFlexible(m, ksp));
   PetscCall(SNESSetFromOptions(snes));
