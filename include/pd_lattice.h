@@ -54,6 +54,7 @@ typedef struct {
   PetscInt  *bn_ijk;    /* [3*nbarnodes] lattice indices of the node it shadows */
   PetscInt  *bn_gid;    /* [nbarnodes] its global id */
   PetscReal *bn_length; /* [nbarnodes] its share of the bar's length (m) */
+  PetscReal *bn_shift;  /* [3*nbarnodes] its place less its shadow's: PD_BAR_NODE_SHIFT dx along the bar */
   PetscInt  *slot_node; /* [n[0]*nslot] the bar node in each slot, or -1 */
   PetscInt  *barnode;   /* [nlocal] the bar node a local node is, or -1 (NULL without bond slip) */
 } PDLattice;
@@ -100,6 +101,9 @@ void PDLatticeNodeIndices(const PDLattice *, PetscInt gid, PetscInt ijk[3]);
 static inline PetscInt PDLatticeGid(const PDLattice *lat, const PetscInt ijk[3]) {
   return ijk[0] * lat->layer + ijk[1] * lat->n[2] + ijk[2];
 }
+/* A bar node sits this many grid spacings from the node it shadows, along its bar: the link between the two,
+   which carries the bond stress, is then a bond with a length and a direction like any other. */
+#define PD_BAR_NODE_SHIFT 1e-4
 /* The bar-node table (bars.c): bar nodes of the bars with bond slip, their slots, nslot. */
 PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *, PDLattice *);
 /* Integer lattice offset of node l from node k, and its n2. */

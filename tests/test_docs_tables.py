@@ -12,7 +12,7 @@ DOCS = os.path.join(ROOT, "docs", "benchmarks")
 REPORTS = {"accuracy_cost.py": ["accuracy_cost.md"], "gregoire.py": ["gregoire.md"], "size_effect.py": ["size_effect_table.md"],
            "elastic.py": ["elastic_table.md"], "solve_profile.py": ["solve_profile.md"], "dt_stability.py": ["dt_stability.md"],
            "explicit_ramp.py": ["explicit_ramp.md"], "explicit_beam.py": ["explicit_beam.md"], "hard_cases.py": ["hard_cases.md"], "blas.py": ["blas.md"],
-           "rc_beam.py": ["rc_beam.md"], "calibration.py": ["calibration.md"],
+           "rc_beam.py": ["rc_beam.md"], "pullout.py": ["pullout.md"], "calibration.py": ["calibration.md"],
            "halfnotched.py": ["halfnotched.md"], "pc_refresh.py": ["pc_refresh.md"],
            "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"],
            "partition.py": ["partition.md"], "scaling.py": ["scaling.md"]}

@@ -57,7 +57,7 @@ PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
   }
   lat->nbarnodes = n;
   if (!n) PetscFunctionReturn(0);
-  PetscCall(PetscMalloc4(n, &lat->bn_bar, 3 * n, &lat->bn_ijk, n, &lat->bn_gid, n, &lat->bn_length));
+  PetscCall(PetscMalloc5(n, &lat->bn_bar, 3 * n, &lat->bn_ijk, n, &lat->bn_gid, n, &lat->bn_length, 3 * n, &lat->bn_shift));
   PetscCall(PetscCalloc1(lat->n[0], &count));
   n = 0;
   for (PetscInt k = 0; k < sc->nbars; k++) {
@@ -69,7 +69,10 @@ PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
     for (PetscInt c = kmin; c <= kmax; c++, n++) {
       const PetscReal t = along[0] + c * along[1], ls = along[1];
       lat->bn_bar[n] = k;
-      for (PetscInt a = 0; a < 3; a++) lat->bn_ijk[3 * n + a] = base[a] + c * b->step[a];
+      for (PetscInt a = 0; a < 3; a++) {
+        lat->bn_ijk[3 * n + a]   = base[a] + c * b->step[a];
+        lat->bn_shift[3 * n + a] = PD_BAR_NODE_SHIFT * lat->dx * lat->dx * b->step[a] / ls;
+      }
       /* a node carries the bond of the bar within half a step either side, up to the bar's ends: the shares add up to
          the bar's length (a lattice that ends before the bar's end cuts it there) */
       lat->bn_length[n] = (c == kmin ? PetscMin(0.5 * ls, t) : 0.5 * ls) + (c == kmax ? PetscMin(0.5 * ls, along[2] - t) : 0.5 * ls);

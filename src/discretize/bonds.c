@@ -60,13 +60,14 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
 }
 
 /* Bars with bond slip (docs/reinforcement.md). A bar node has three kinds of partner: the bar nodes before
-   and after it on its bar (the bar's segments), the lattice nodes one step of the bar either side of the
-   node it shadows (axial links, which carry the bond stress along the bar as a function of the slip), and
-   the lattice nodes one cross direction either side (ties, elastic, which hold the bar node to the
-   concrete across the bar). A link or tie has a length and a direction of its own, so that it is an
-   ordinary bond to every loop; a zero-length link to the shadowed node would not be. */
-typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_AXIAL, PD_BARPAIR_TIE } PDBarPair;
-#define PD_MAX_BAR_PARTNERS 8
+   and after it on its bar (the bar's segments), the node it shadows (the link, which carries the bond
+   stress as a function of the slip along the bar; the bar node sits PD_BAR_NODE_SHIFT dx from it along the
+   bar, so that the link is a bond with a length and a direction to every loop), and the lattice nodes one
+   cross direction either side (ties, elastic, which hold the bar node to the concrete across the bar).
+   Nothing joins a bar node to concrete beyond its own node: across a crack between two bar nodes only
+   the bar carries. */
+typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_LINK, PD_BARPAIR_TIE } PDBarPair;
+#define PD_MAX_BAR_PARTNERS 7
 
 static PetscInt Gcd(PetscInt a, PetscInt b) {
   a = PetscAbsInt(a);
@@ -135,7 +136,12 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
   np = 1 + CrossDirections(b->step, lat->dim, cross);
   for (PetscInt k = 1; k < np; k++)
     for (PetscInt c = 0; c < 3; c++) p[k][c] = cross[k - 1][c];
-  for (PetscInt k = 0; k < np; k++)
+  if (!InVoid(sc, x0)) { /* the link */
+    gid[n]  = PDLatticeGid(lat, c0);
+    kind[n] = PD_BARPAIR_LINK;
+    n++;
+  }
+  for (PetscInt k = 1; k < np; k++) /* the ties */
     for (PetscInt d = -1; d <= 1; d += 2) {
       PetscInt  ijk[3];
       PetscReal x[3];
@@ -149,36 +155,31 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
       for (PetscInt m = 0; m < sc->nnotches && !cut; m++) cut = NotchCuts(&sc->notch[m], x0, x, sc->dim, tol);
       if (cut) continue;
       gid[n]  = PDLatticeGid(lat, ijk);
-      kind[n] = k ? PD_BARPAIR_TIE : PD_BARPAIR_AXIAL;
+      kind[n] = PD_BARPAIR_TIE;
       n++;
     }
   return n;
 }
 
 /* The constants of a pair with a bar node at one end at least (local nodes i, j): a segment has no
-   concrete (its steel is set up with the other segments, bars.c); an axial link of bar node q carries the
-   bond force tau(slip) times the bar's perimeter times q's share of the bar's length, split over q's
-   axial links; a tie is as stiff across the bar as the concrete cell, E V / dx^2, split over its two. */
+   concrete (its steel is set up with the other segments, bars.c); the link of bar node q carries the bond
+   force tau(slip) times the bar's perimeter times q's share of the bar's length; a tie is as stiff across
+   the bar as the concrete cell, E V / dx^2, split over its two. */
 static void BarPairConstants(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j, PetscReal *coef, PetscInt *material) {
-  const PetscInt  q = lat->barnode[i] >= 0 ? lat->barnode[i] : lat->barnode[j], c = lat->barnode[i] >= 0 ? j : i;
-  const PDBar    *b = &sc->bar[lat->bn_bar[q]];
-  PetscInt        d[3], n2 = PDLatticeOffset(lat, i, j, d), gid[PD_MAX_BAR_PARTNERS], np, nax = 0, along = 1;
-  PDBarPair       kind[PD_MAX_BAR_PARTNERS];
-  const PetscReal len = PetscSqrtReal((PetscReal)n2) * lat->dx;
+  const PetscInt q = lat->barnode[i] >= 0 ? lat->barnode[i] : lat->barnode[j], c = lat->barnode[i] >= 0 ? j : i;
+  const PDBar   *b = &sc->bar[lat->bn_bar[q]];
+  PetscInt       d[3], n2 = PDLatticeOffset(lat, i, j, d);
 
   *coef     = 0;
   *material = PD_MATERIAL_ELASTIC;
   if (lat->barnode[i] >= 0 && lat->barnode[j] >= 0) return;
-  np = BarPartners(sc, lat, q, gid, kind);
-  for (PetscInt k = 0; k < np; k++) nax += kind[k] == PD_BARPAIR_AXIAL;
-  for (PetscInt a = 0; a < 3; a++) along = along && PetscAbsInt(d[a]) == PetscAbsInt(b->step[a]) ? 1 : 0;
-  if (along) {
+  if (n2 == 0) { /* the link to the node q shadows */
     PDSlipEnvelope env;
     PDSlipEnvelopeSetUp(b, &env);
-    *coef     = env.k0 * b->count * PETSC_PI * b->diameter * lat->bn_length[q] * len / nax;
+    *coef     = env.k0 * b->count * PETSC_PI * b->diameter * lat->bn_length[q] * PD_BAR_NODE_SHIFT * lat->dx;
     *material = PD_MATERIAL_SLIP(lat->bn_bar[q]);
   } else
-    *coef = sc->material[lat->material[c]].E * lat->cell_volume / (lat->dx * lat->dx) * len / 2;
+    *coef = sc->material[lat->material[c]].E * lat->cell_volume / (lat->dx * lat->dx) * PetscSqrtReal((PetscReal)n2) * lat->dx / 2;
 }
 
 /* Pairs with a bar node that the owned node i starts (FindPairs' rule: a pair of two owned nodes from the

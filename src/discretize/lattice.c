@@ -162,6 +162,7 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
     if (lat->barnode) lat->barnode[l] = r >= 0 ? lat->slot_node[(lat->gid[l] / layer) * lat->nslot + r] : -1;
     if (r >= 0) { /* a slot: a bar node, steel only, or hollow */
       lat->hollow[l] = lat->barnode[l] < 0 ? PETSC_TRUE : PETSC_FALSE;
+      for (PetscInt a = 0; a < 3 && !lat->hollow[l]; a++) lat->x[3 * l + a] += lat->bn_shift[3 * lat->barnode[l] + a];
       lat->nofail[l] = PETSC_FALSE;
       if (l < lat->nowned && lat->hollow[l]) nunused++;
       continue;
@@ -211,7 +212,7 @@ PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscCall(PetscFree5(lat->gid, lat->x, lat->material, lat->hollow, lat->nofail));
   PetscCall(PetscFree(lat->stencil));
   PetscCall(PetscFree(lat->barnode));
-  PetscCall(PetscFree4(lat->bn_bar, lat->bn_ijk, lat->bn_gid, lat->bn_length));
+  PetscCall(PetscFree5(lat->bn_bar, lat->bn_ijk, lat->bn_gid, lat->bn_length, lat->bn_shift));
   PetscCall(PetscFree(lat->slot_node));
   PetscFunctionReturn(0);
 }

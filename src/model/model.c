@@ -33,10 +33,14 @@ static PetscErrorCode GhostedValues(Vec g, PetscReal *out) {
 
 /* Diagonal of a node's 3x3 stiffness block, sum over its bonds of (c/|xi|) e e^T. */
 /* A region selects the nodes of its box or cylinder that hold material (a void's nodes carry nothing):
-   the concrete's, or those of the bars with bond slip (-pd_regionK_nodes). */
+   the concrete's, or those of the bars with bond slip (-pd_regionK_nodes), each at the place of the node it
+   shadows. */
 static PetscBool InRegion(const PDRegion *reg, const PDLattice *lat, PetscInt i, const PDScene *sc) {
-  const PetscBool bar = lat->barnode && lat->barnode[i] >= 0 ? PETSC_TRUE : PETSC_FALSE;
-  return !lat->hollow[i] && bar == reg->on_bars && PDGeometryContains(&reg->where, &lat->x[3 * i], sc) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscInt q = lat->barnode ? lat->barnode[i] : -1;
+  PetscReal      x[3];
+  if (lat->hollow[i] || (q >= 0) != reg->on_bars) return PETSC_FALSE;
+  for (PetscInt a = 0; a < 3; a++) x[a] = lat->x[3 * i + a] - (q >= 0 ? lat->bn_shift[3 * q + a] : 0);
+  return PDGeometryContains(&reg->where, x, sc);
 }
 
 static void NodalStiffnessDiagonal(const PDModel *m, PetscInt i, PetscReal diag[3]) {
@@ -250,11 +254,8 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->bs    = sc->dim;
   for (PetscInt k = 0; k < sc->nmaterials; k++) PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
   for (PetscInt k = 0; k < sc->nbars; k++) {
-    const PetscInt *st = sc->bar[k].step;
     PDSteelSetUp(&sc->bar[k], &m->steel[k]);
-    if (sc->bar[k].slip)
-      PDLawSetUpSlip(&sc->bar[k], PetscSqrtReal((PetscReal)(st[0] * st[0] + st[1] * st[1] + st[2] * st[2])) * sc->dx,
-                     &m->law[PD_MATERIAL_SLIP(k)]);
+    if (sc->bar[k].slip) PDLawSetUpSlip(&sc->bar[k], PD_BAR_NODE_SHIFT * sc->dx, &m->law[PD_MATERIAL_SLIP(k)]);
   }
   m->softening = PDSceneHasDamage(sc);
   m->linear    = (sc->kinematics == PD_KINEMATICS_SMALL && !m->softening && !sc->nbars) ? PETSC_TRUE : PETSC_FALSE;
