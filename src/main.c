@@ -116,7 +116,8 @@ static PetscErrorCode Describe(Run *r) {
   PetscCall(PetscPrintf(r->comm,
                         "  %" PetscInt_FMT " nodes, %" PetscInt64_FMT " bonds (%" PetscInt_FMT " cut by notches), %" PetscInt_FMT
                         " constrained dofs, set-up %.3f s\n",
-                        r->lat.nglobal, r->bonds.nbonds_global, r->bonds.ncut, r->model.nconstrained, (double)r->rec.t_setup));
+                        r->lat.nglobal - r->lat.nunused, r->bonds.nbonds_global, r->bonds.ncut, r->model.nconstrained,
+                        (double)r->rec.t_setup));
   PetscCall(PetscPrintf(r->comm, "  effects:"));
   for (PetscInt k = 0; k < n; k++) PetscCall(PetscPrintf(r->comm, "%s %s", k ? "," : "", names[k]));
   PetscCall(PetscPrintf(r->comm, "\n"));

@@ -68,6 +68,15 @@ CASES = [
     ("bar_prism", ["-pd_bar0_hardening", "1"], "-pd_bar0_hardening"),
     ("bar_prism", ["-pd_bar0_rupture", "0.001"], "-pd_bar0_rupture"),  # below the yield strain 0.0025
     ("bar_prism", ["-pd_bar0_count", "0"], "-pd_bar0_count"),
+    # bond slip
+    ("pullout", ["-pd_bar0_fcm", "-38e6"], "-pd_bar0_fcm"),
+    ("bar_prism", ["-pd_bar0_bond", "slip"], "-pd_bar0_fcm"),  # no f_cm and no -pd_fc to take it from
+    ("pullout", ["-pd_bar0_slips", "3e-3,2e-3,7e-3"], "-pd_bar0_slips"),  # s1 above s2
+    ("pullout", ["-pd_bar0_slips", "1e-3,2e-3"], "-pd_bar0_slips"),  # two numbers
+    ("pullout", ["-pd_bar0_diameter", "0.003"], "-pd_bar0_slips"),  # the default s3 = 0.6 d below s2
+    ("pullout", ["-pd_kinematics", "finite"], "-pd_bar0_bond"),
+    ("bar_prism", ["-pd_region1_nodes", "bars"], "-pd_region1_nodes"),  # no bar with bond slip
+    ("bar_prism", ["-pd_bar0_slips", "1e-3,2e-3,7e-3"], "-pd_bar0_slips"),  # given to a bar without bond slip
     ("bar_prism", ["-pd_bar1_line", "0.1,0.05,0.05,0.3,0.05,0.05", "-pd_bar1_diameter", "0.01"], "-pd_bar1_line"),  # overlaps bar 0
     ("bar_prism", ["-pd_bar2_line", "0,0.03,0.03,0.4,0.03,0.03", "-pd_bar2_diameter", "0.01"], "-pd_bar2"),  # numbering gap
     ("cantilever", ["-pd_bar0_line", "0,0.05,0.05,1,0.05,0.05"], "-pd_bar0_diameter"),  # diameter missing

@@ -167,7 +167,7 @@ def pullout():
     # plateau (every node of the bar past s1, f = tau_max pi d L, exact but for the solves) and on the fall,
     # where the inner nodes slip less than the loaded end by the bar's stretch and the concrete's (measured
     # +0.6 %; 1 %). On the rise, the loaded end's slip is not the mean: its force is below, by at most 10 %
-    # past a slip of 0.2 mm (measured 5 %). The same curve on two ranks, which split the bar, to 2.5 mm in
+    # past a slip of 0.2 mm (measured 5 %). A restart from a checkpoint. The same curve on two ranks, which split the bar, to 2.5 mm in
     # 100 increments (at 60 the first increment is cut on one rank count and not on the other, and the
     # curves then have different points); the solves' tolerance allows 1e-6 of the increment's load.
     L, d = 0.06, 0.012
@@ -184,6 +184,14 @@ def pullout():
     low = min(x["load_N"] / (bond_stress(x["slip_m"]) * math.pi * d * L) for x in rows)
     check(len(rows) >= 3 and 0.9 < low <= 1 + 1e-9, "rise: force at least %.3f of tau(s) pi d L from 0.2 mm (0.9)" % low)
     check(abs(max(x["load_N"] for x in r.curve) - top) < 1e-5 * top, "peak %.1f N = tau_max pi d L = %.1f N (1e-5)" % (max(x["load_N"] for x in r.curve), top))
+    # path following stopped at load factor 0.5 and gone on from its checkpoint retraces the whole run, slips included
+    arc = ["-pd_control", "arclength"]
+    whole = run("pullout", *arc).curve
+    half = run("pullout", *arc, "-pd_lambda_max", "0.5", "-pd_steps", "30", "-pd_checkpoint_every", "100")  # the same first step
+    again = run("pullout", *arc, "-pd_restart", os.path.join(half.dir, "checkpoint.h5")).curve
+    worst = max(max(abs(x[k] - y[k]) / max(abs(z[k]) for z in whole) for k in ("load_N", "slip_m")) for x, y in zip(whole, again))
+    check(1 < len(half.curve) < len(whole) == len(again) and worst < 1e-8, "restart at step %d: the %d steps retraced, slips too, largest "
+          "difference %.1e (1e-8)" % (len(half.curve), len(whole), worst))
     short = ["-pd_steps", "100", "-pd_region1_displacement", "-0.0025,0,0"]
     a, b = run("pullout", *short).curve, run("pullout", *short, ranks=2).curve
     worst = max(abs(x["load_N"] - y["load_N"]) / top for x, y in zip(a, b))

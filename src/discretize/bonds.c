@@ -67,7 +67,7 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
    Nothing joins a bar node to concrete beyond its own node: across a crack between two bar nodes only
    the bar carries. */
 typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_LINK, PD_BARPAIR_TIE } PDBarPair;
-#define PD_MAX_BAR_PARTNERS 7
+#define PD_MAX_BAR_PARTNERS 16 /* a bar node has at most 7; a lattice node ties to at most this many */
 
 static PetscInt Gcd(PetscInt a, PetscInt b) {
   a = PetscAbsInt(a);
@@ -201,7 +201,12 @@ static PetscErrorCode PushBarPairs(const PDScene *sc, const PDLattice *lat, Pets
       else
         hi = mid;
     }
-    for (; lo < nrev && rev[2 * lo] == gi && n < PD_MAX_BAR_PARTNERS; lo++) gid[n++] = rev[2 * lo + 1];
+    for (; lo < nrev && rev[2 * lo] == gi; lo++) {
+      PetscCheck(n < PD_MAX_BAR_PARTNERS, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+                 "Options -pd_bar*_line: more than %d bar nodes with bond slip tie to the lattice node at %g,%g,%g m; move the bars apart",
+                 PD_MAX_BAR_PARTNERS, (double)lat->x[3 * i], (double)lat->x[3 * i + 1], (double)lat->x[3 * i + 2]);
+      gid[n++] = rev[2 * lo + 1];
+    }
   }
   for (PetscInt k = 0; k < n; k++) {
     const PetscInt j = PDLatticeLocalIndex(lat, gid[k]);
@@ -225,6 +230,19 @@ static PetscErrorCode BarPairsByLatticeNode(const PDScene *sc, const PDLattice *
   *rev  = NULL;
   *nrev = 0;
   if (!lat->barnode) PetscFunctionReturn(0);
+  for (PetscInt k = 0; k < sc->nbars; k++) { /* a tie reaches no further than the ghost layers */
+    PetscInt cross[2][3], nc;
+    if (!sc->bar[k].slip) continue;
+    nc = CrossDirections(sc->bar[k].step, lat->dim, cross);
+    for (PetscInt c = 0; c < nc; c++)
+      PetscCheck(PetscAbsInt(cross[c][0]) <= lat->reach &&
+                     cross[c][0] * cross[c][0] + cross[c][1] * cross[c][1] + cross[c][2] * cross[c][2] <= lat->reach * lat->reach,
+                 lat->comm, PETSC_ERR_USER_INPUT,
+                 "Option %s_bond slip: the bar's direction (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT
+                 ") has no lattice direction across it within %" PetscInt_FMT
+                 " spacings to tie it to the concrete; run it along an axis or a diagonal",
+                 sc->bar[k].option, sc->bar[k].step[0], sc->bar[k].step[1], sc->bar[k].step[2], lat->reach);
+  }
   PetscCall(PetscMalloc1(2 * PD_MAX_BAR_PARTNERS * PetscMax(1, lat->nbarnodes), rev));
   for (PetscInt l = 0; l < lat->nlocal; l++) {
     PetscInt  gid[PD_MAX_BAR_PARTNERS], np;

@@ -37,7 +37,10 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
     mine[0] += PDBondStiffness(bd, e);
     /* the thresholds as built (crushing's rise, m->shift, is history, written with it) and the rise's
        coefficient, so that a leg with another -pd_fc is refused like one with another strength */
-    if (law->kind != PD_LAW_ELASTIC) mine[1] += PDModelBondThresholds(m, e, law)->sc - (m->shift ? m->shift[e] : 0) + law->confine;
+    if (law->kind == PD_LAW_SLIP)
+      mine[1] += law->slip.tau_max + law->slip.x[3]; /* a link never breaks: sc is infinite */
+    else if (law->kind != PD_LAW_ELASTIC)
+      mine[1] += PDModelBondThresholds(m, e, law)->sc - (m->shift ? m->shift[e] : 0) + law->confine;
     if (bd->seg && bd->seg[e] >= 0) {
       const PDSteel *st = &m->steel[bd->seg_bar[bd->seg[e]]];
       mine[1] += st->sy + st->h + (st->su < PETSC_MAX_REAL ? st->su : 0);
@@ -479,34 +482,37 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
 
 /* The rows' largest slip (scenes with bond slip), apart from the rows, so that the rows of checkpoints
    written without it still read. */
-static PetscErrorCode SlipRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscViewer v, PetscBool write) {
-  Vec          S, all;
-  VecScatter   toall;
+static PetscErrorCode WriteSlipRows(MPI_Comm comm, const PDRecord *rec, PetscViewer v) {
+  Vec          S;
   PetscScalar *a;
   PetscInt     lo, hi;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, nrows), &S));
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, rec->nrows), &S));
   PetscCall(PetscObjectSetName((PetscObject)S, "curve_slip"));
-  if (write) {
-    PetscCall(VecGetOwnershipRange(S, &lo, &hi));
-    PetscCall(VecGetArray(S, &a));
-    for (PetscInt r = lo; r < hi && r < nrows; r++) a[r - lo] = rec->rows[r].slip;
-    PetscCall(VecRestoreArray(S, &a));
-    PetscCall(VecView(S, v));
-    PetscCall(VecDestroy(&S));
-    PetscFunctionReturn(0);
-  }
-  PetscCall(VecLoad(S, v));
-  PetscCall(VecScatterCreateToAll(S, &toall, &all));
-  PetscCall(VecScatterBegin(toall, S, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(toall, S, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArray(all, &a));
-  for (PetscInt r = 0; r < nrows && r < rec->nrows; r++) rec->rows[r].slip = PetscRealPart(a[r]);
-  PetscCall(VecRestoreArray(all, &a));
-  PetscCall(VecScatterDestroy(&toall));
-  PetscCall(VecDestroy(&all));
+  PetscCall(VecGetOwnershipRange(S, &lo, &hi));
+  PetscCall(VecGetArray(S, &a));
+  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r < rec->nrows ? rec->rows[r].slip : 0;
+  PetscCall(VecRestoreArray(S, &a));
+  PetscCall(VecView(S, v));
   PetscCall(VecDestroy(&S));
+  PetscFunctionReturn(0);
+}
+
+/* A vector of the file, whole on every rank. */
+static PetscErrorCode ReadToAll(MPI_Comm comm, PetscViewer v, const char *name, PetscInt n, Vec *all) {
+  Vec        R;
+  VecScatter toall;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, n, &R));
+  PetscCall(PetscObjectSetName((PetscObject)R, name));
+  PetscCall(VecLoad(R, v));
+  PetscCall(VecScatterCreateToAll(R, &toall, all));
+  PetscCall(VecScatterBegin(toall, R, *all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(toall, R, *all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterDestroy(&toall));
+  PetscCall(VecDestroy(&R));
   PetscFunctionReturn(0);
 }
 
@@ -535,29 +541,26 @@ static PetscErrorCode WriteRows(MPI_Comm comm, const PDRecord *rec, PetscViewer 
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscViewer v) {
-  Vec                R, all;
-  VecScatter         toall;
-  const PetscScalar *a;
+static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscBool slip, PetscViewer v) {
+  Vec                all, slips = NULL;
+  const PetscScalar *a, *sl     = NULL;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, nrows) * ROW_FIELDS, &R));
-  PetscCall(PetscObjectSetName((PetscObject)R, "curve"));
-  PetscCall(VecLoad(R, v));
-  PetscCall(VecScatterCreateToAll(R, &toall, &all));
-  PetscCall(VecScatterBegin(toall, R, all, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecScatterEnd(toall, R, all, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(ReadToAll(comm, v, "curve", PetscMax(1, nrows) * ROW_FIELDS, &all));
+  if (slip) PetscCall(ReadToAll(comm, v, "curve_slip", PetscMax(1, nrows), &slips));
   PetscCall(VecGetArrayRead(all, &a));
+  if (slips) PetscCall(VecGetArrayRead(slips, &sl));
   PetscCall(PDRecordClearRows(rec));
   for (PetscInt r = 0; r < nrows; r++) {
-    PDCurveRow row;
+    PDCurveRow row = {0};
     RowUnpack(a + r * ROW_FIELDS, &row);
+    if (sl) row.slip = PetscRealPart(sl[r]);
     PetscCall(PDRecordAddRow(rec, &row));
   }
   PetscCall(VecRestoreArrayRead(all, &a));
-  PetscCall(VecScatterDestroy(&toall));
+  if (slips) PetscCall(VecRestoreArrayRead(slips, &sl));
   PetscCall(VecDestroy(&all));
-  PetscCall(VecDestroy(&R));
+  PetscCall(VecDestroy(&slips));
   PetscFunctionReturn(0);
 }
 
@@ -597,7 +600,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(Totals(m, rec, v, PETSC_TRUE));
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", real_name[k], PETSC_REAL, &real[k]));
   PetscCall(WriteRows(comm, rec, v));
-  if (m->lat->nbarnodes) PetscCall(SlipRows(comm, (PDRecord *)rec, nrows, v, PETSC_TRUE));
+  if (m->lat->nbarnodes) PetscCall(WriteSlipRows(comm, rec, v));
   if (m->softening) PetscCall(WriteHistory(m, kappa_prev, v));
   if (m->scene->nbars) PetscCall(WriteSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {
@@ -626,8 +629,7 @@ PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, Pet
   PetscCall(Totals(m, rec, v, PETSC_FALSE));
   /* a scalar the file lacks (written before the driver kept it) reads as 0 */
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &real[k]));
-  PetscCall(ReadRows(comm, rec, nrows, v));
-  if (m->lat->nbarnodes) PetscCall(SlipRows(comm, rec, nrows, v, PETSC_FALSE));
+  PetscCall(ReadRows(comm, rec, nrows, m->lat->nbarnodes > 0 ? PETSC_TRUE : PETSC_FALSE, v));
   if (m->softening) PetscCall(ReadHistory(m, kappa_prev, v));
   if (m->scene->nbars) PetscCall(ReadSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {

@@ -199,12 +199,12 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
     }
     PetscCall(PetscFPrintf(comm, fp, "]},\n"));
   }
-  /* nodes hold material (bar nodes included); the lattice's void nodes and unused bar-node slots (pinned, no
-     bonds) are counted apart, and in the dofs */
+  /* nodes hold material (bar nodes included); the lattice's void nodes and the bar-node slots no bar node takes
+     (pinned, no bonds) are counted apart, and in the dofs */
   PetscCall(PetscFPrintf(comm, fp,
-                         "  \"nodes\": %" PetscInt_FMT ",\n  \"void_nodes\": %" PetscInt_FMT ",\n  \"bonds\": %" PetscInt64_FMT
-                         ",\n  \"dofs\": %" PetscInt_FMT ",\n",
-                         m->lat->nglobal - m->lat->nvoid - m->lat->nunused, m->lat->nvoid + m->lat->nunused, m->bonds->nbonds_global,
+                         "  \"nodes\": %" PetscInt_FMT ",\n  \"void_nodes\": %" PetscInt_FMT ",\n  \"unused_slots\": %" PetscInt_FMT
+                         ",\n  \"bonds\": %" PetscInt64_FMT ",\n  \"dofs\": %" PetscInt_FMT ",\n",
+                         m->lat->nglobal - m->lat->nvoid - m->lat->nunused, m->lat->nvoid, m->lat->nunused, m->bonds->nbonds_global,
                          m->lat->nglobal * m->bs));
   PetscCall(WriteEffects(comm, fp, m));
   PetscCall(PetscFPrintf(comm, fp, "  \"dx_m\": %.10e,\n  \"horizon_ratio\": %.10e,\n  \"influence\": \"%s\",\n  \"kinematics\": \"%s\",\n",

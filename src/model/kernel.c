@@ -371,7 +371,7 @@ PetscErrorCode PDModelTangentScalars(PDModel *m, const PetscScalar *u, PetscReal
     BondForce(m, e, s, &g, &gp);
     ka[e] = gp * q - (geometric ? g / L : 0);
     if (kb) kb[e] = geometric ? g / L : 0;
-    if (kp) kp[e] = gp < 0 && s > 0 ? ka[e] + (g / s - gp) * q : ka[e];
+    if (kp) kp[e] = gp < 0 && s != 0 ? ka[e] + (g / s - gp) * q : ka[e]; /* g / s > 0: a bond-slip link's fall has s < 0 too */
   }
   PetscCall(PetscLogEventEnd(PD_LOG.tangent, 0, 0, 0, 0));
   PetscFunctionReturn(0);

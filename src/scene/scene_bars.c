@@ -65,11 +65,18 @@ static PetscErrorCode ReadSlip(PetscOptionItems *PetscOptionsObject, PDScene *sc
   PetscCheck(b->fcm > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
              "Option %s_fcm is required for a bar with bond slip (the concrete's mean compressive strength, Pa), unless -pd_fc gives it",
              b->option);
+  PetscCheck(sc->kinematics == PD_KINEMATICS_SMALL, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_bond slip needs -pd_kinematics small: the link to the concrete is 1e-4 dx long, and under finite "
+             "kinematics a sideways move of the bar would read as slip",
+             b->option);
   b->slips[0] = 1e-3;
   b->slips[1] = 2e-3;
   b->slips[2] = 0.6 * b->diameter;
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_slips", b->option));
   PetscCall(PDOptionRealArray(PetscOptionsObject, sc, opt, b->slips, &n, &set));
+  PetscCheck(set || b->slips[2] > b->slips[1], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_slips is required for a bar this thin: the default s3 = 0.6 d = %g m is not above s2 = 2 mm", b->option,
+             (double)b->slips[2]);
   PetscCheck(!set || n == 3, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: expected three slips s1,s2,s3 (m), got %" PetscInt_FMT, opt,
              n);
   PetscCheck(b->slips[0] > 0 && b->slips[0] <= b->slips[1] && b->slips[1] < b->slips[2], PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
