@@ -1,5 +1,6 @@
 """What the benchmark scripts share: where things are, how pdimplicit is started and timed, how results
 are kept between runs, and the digitised experimental curves."""
+import csv
 import json
 import os
 import subprocess
@@ -15,6 +16,12 @@ RESULTS_DIR = os.path.join(ROOT, "docs", "benchmarks")
 OUT = os.environ.get("PD_REPORT_DIR", RESULTS_DIR)
 # Open MPI refuses to start as root without these (CI runs as root)
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+
+def curve_rows(outdir):
+    """The rows of a run's curve.csv, every column a float."""
+    with open(os.path.join(outdir, "curve.csv")) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
 def last_fields(outdir):

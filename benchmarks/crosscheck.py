@@ -14,7 +14,6 @@ output/crosscheck_<scene>) and prints the table. --record also keeps the compari
 docs/benchmarks/crosscheck.json; --report writes docs/benchmarks/crosscheck.md from that file.
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -23,7 +22,7 @@ import subprocess
 import sys
 import time
 
-from common import ENV, EXE, OUT, RESULTS_DIR, ROOT, load_results, save_results
+from common import curve_rows, ENV, EXE, OUT, RESULTS_DIR, ROOT, load_results, save_results
 
 JSON = os.path.join(RESULTS_DIR, "crosscheck.json")
 # the recorded cases, in the order of the report, with what each shows
@@ -45,7 +44,7 @@ def run(scene, out, ranks, opts):
     wall = time.time() - t0
     try:
         s = json.load(open(os.path.join(out, "summary.json")))
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(out, "curve.csv")))]
+        rows = curve_rows(out)
     except OSError:
         sys.exit("crosscheck: %s failed (%d): %s" % (" ".join(cmd), p.returncode, (p.stderr.strip().splitlines() or ["?"])[-1]))
     return {"wall": wall, "summary": s, "rows": rows, "returncode": p.returncode}

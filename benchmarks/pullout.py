@@ -6,13 +6,12 @@ stress is uniform along the bar. Writes docs/benchmarks/pullout.json, pullout.md
 
 Usage: benchmarks/pullout.py [--report]
 """
-import csv
 import math
 import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results
 
 JSON = os.path.join(RESULTS_DIR, "pullout.json")
 SCENE = os.path.join(ROOT, "options", "pullout.opts")
@@ -31,7 +30,7 @@ def measure():
     out = tempfile.mkdtemp(prefix="pdbench_")
     with open(os.path.join(out, "log"), "w") as log:
         code, wall, cpu, _ = run_timed([EXE, "-options_file", SCENE, "-pd_output_dir", out], 600, log)
-    rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(out, "curve.csv")))]
+    rows = curve_rows(out)
     res = {"exit": code, "cpu_s": round(cpu, 2), "steps": len(rows), "newton": int(sum(r["newton_its"] for r in rows)),
            "curve": [[r["slip_m"], r["load_N"]] for r in rows]}
     save_results(JSON, res)

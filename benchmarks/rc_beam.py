@@ -8,13 +8,12 @@ exceeds 0.5). Writes docs/benchmarks/rc_beam.json and rc_beam.md (a few minutes)
 
 Usage: benchmarks/rc_beam.py [--report | CASE ...]   (CASE: run only these, keep the others' results)
 """
-import csv
 import math
 import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results
 
 JSON = os.path.join(RESULTS_DIR, "rc_beam.json")
 SCENE = os.path.join(ROOT, "options", "rc_beam_2d.opts")
@@ -67,7 +66,7 @@ def measure(names):
         out = tempfile.mkdtemp(prefix="pdbench_")
         with open(os.path.join(out, "log"), "w") as log:
             code, wall, cpu, _ = run_timed([EXE, "-options_file", SCENE, "-pd_output_dir", out, *extra], 3600, log)
-        rows = [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(os.path.join(out, "curve.csv")))]
+        rows = curve_rows(out)
         k = max(range(len(rows)), key=lambda i: rows[i]["load_N"])
         first = next((r for r in rows if r["yielded_segments"] > 0), None)
         status = open(os.path.join(out, "log")).read().strip().splitlines()[-1]

@@ -55,6 +55,10 @@ typedef struct {
   PetscReal      slip_length;
 } PDLaw;
 
+/* The stretch a bond's history follows: s, or |s| for a bond-slip link, whose law is symmetric. */
+static inline PetscReal PDLawHistoryStretch(const PDLaw *law, PetscReal s) {
+  return law->kind == PD_LAW_SLIP ? PetscAbsReal(s) : s;
+}
 /* The law of bar k's bond-slip links, whose length is link_length. */
 void PDLawSetUpSlip(const PDBar *, PetscReal link_length, PDLaw *);
 

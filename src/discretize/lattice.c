@@ -112,7 +112,7 @@ PetscInt PDLatticeOffset(const PDLattice *lat, PetscInt k, PetscInt l, PetscInt 
 
 PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat) {
   PetscMPIInt size, rank;
-  PetscInt    layer, g[4], nvoid = 0, nunused = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
+  PetscInt    layer, g[4], nvoid = 0, invoid_mine[PD_MAX_VOIDS] = {0}, invoid[PD_MAX_VOIDS];
   PetscInt    innofail_mine[PD_MAX_NOFAIL]   = {0}, innofail[PD_MAX_NOFAIL];
   PetscInt    inplate_mine[PD_MAX_MATERIALS] = {0}, inplate[PD_MAX_MATERIALS];
 
@@ -132,7 +132,8 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
     lat->origin[a] = a < sc->dim ? sc->domain[a] + 0.5 * (len - lat->n[a] * sc->dx) + 0.5 * sc->dx : 0;
   }
   PetscCall(PDLatticeSetUpBarNodes(sc, lat));
-  lat->layer = lat->n[1] * lat->n[2] + lat->nslot;
+  lat->layer   = lat->n[1] * lat->n[2] + lat->nslot;
+  lat->nunused = lat->n[0] * lat->nslot - lat->nbarnodes; /* every layer has nslot slots */
   PetscCheck((PetscInt64)lat->n[0] * lat->layer < PETSC_MAX_INT / 3, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_dx: %g gives too many nodes for 32-bit indices", (double)sc->dx);
   PetscCheck(lat->n[0] >= size, comm, PETSC_ERR_USER_INPUT, "Option -pd_dx: %" PetscInt_FMT " layers along x cannot be shared by %d ranks",
@@ -164,7 +165,6 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
       lat->hollow[l] = lat->barnode[l] < 0 ? PETSC_TRUE : PETSC_FALSE;
       for (PetscInt a = 0; a < 3 && !lat->hollow[l]; a++) lat->x[3 * l + a] += lat->bn_shift[3 * lat->barnode[l] + a];
       lat->nofail[l] = PETSC_FALSE;
-      if (l < lat->nowned && lat->hollow[l]) nunused++;
       continue;
     }
     for (PetscInt m = sc->nmaterials + sc->nplates - 1; m > 0; m--) /* plates over materials, later over earlier */
@@ -188,7 +188,6 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
       }
   }
   PetscCall(MPIU_Allreduce(&nvoid, &lat->nvoid, 1, MPIU_INT, MPI_SUM, comm));
-  PetscCall(MPIU_Allreduce(&nunused, &lat->nunused, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(invoid_mine, invoid, PD_MAX_VOIDS, MPIU_INT, MPI_SUM, comm));
   for (PetscInt v = 0; v < sc->nvoids; v++)
     PetscCheck(invoid[v] > 0, comm, PETSC_ERR_USER_INPUT,

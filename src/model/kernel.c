@@ -22,21 +22,20 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
   const PetscReal c = m->bonds->coef[e];
   const PDLaw    *law;
   PetscReal       kap, cap, d, dd, a;
-  PetscBool       sym;
 
-  if (!m->softening) {
+  /* compression without bond-slip links needs no law: most bonds of a loaded body take this way */
+  if (!m->softening || (s < 0 && !m->nslip)) {
     *g  = c * s;
     *gp = c;
     return;
   }
   law = &m->law[m->bonds->material[e]];
-  sym = law->kind == PD_LAW_SLIP ? PETSC_TRUE : PETSC_FALSE;
-  if ((s < 0 && !sym) || law->kind == PD_LAW_ELASTIC) {
+  a   = PDLawHistoryStretch(law, s);
+  if (a < 0 || law->kind == PD_LAW_ELASTIC) {
     *g  = c * s;
     *gp = c;
     return;
   }
-  a = sym ? PetscAbsReal(s) : s;
   {
     const PDLawBond *t       = PDModelBondThresholds(m, e, law);
     PetscBool        loading = a >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
@@ -338,10 +337,10 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
     {
       const PDLaw     *law = &m->law[bd->material[e]];
       const PDLawBond *t   = PDModelBondThresholds(m, e, law);
-      const PetscBool  sym = law->kind == PD_LAW_SLIP ? PETSC_TRUE : PETSC_FALSE; /* a bond-slip link: history |s| */
-      PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, sym ? PetscAbsReal(s) : PetscMax(s, 0), &cap);
+      const PetscReal  a   = PDLawHistoryStretch(law, s);
+      PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(a, 0), &cap);
       PetscReal        d = PDLawDamage(law, t, kap, &dd);
-      es += 0.5 * c * (s < 0 && !sym ? 1 : 1 - d) * s * s * L0;
+      es += 0.5 * c * (a < 0 ? 1 : 1 - d) * s * s * L0;
       ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
     }
   }
@@ -482,7 +481,7 @@ PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) 
 /* Commits one bond's state at stretch s: the largest stretch of its concrete (the explicit path, which has
    no limiter, commits at every force evaluation) and its bar segment's plastic stretch and rupture. */
 void PDModelCommitBond(PDModel *m, PetscInt e, PetscReal s) {
-  if (m->softening) m->kappa[e] = PetscMax(m->kappa[e], m->law[m->bonds->material[e]].kind == PD_LAW_SLIP ? PetscAbsReal(s) : s);
+  if (m->softening) m->kappa[e] = PetscMax(m->kappa[e], PDLawHistoryStretch(&m->law[m->bonds->material[e]], s));
   if (m->bonds->seg && m->bonds->seg[e] >= 0) PDModelCommitSegment(m, m->bonds->seg[e], s);
 }
 
