@@ -197,6 +197,16 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
     B    = 2 * (PetscRealPart(vw) + psi2 * Dl);
     C    = PetscRealPart(ww) + psi2 * Dl * Dl - dl * dl;
     disc = B * B - 4 * A * C;
+    if (disc < 0 && !predictor) {
+      /* the corrector's line u + du_I + dlam v misses the constraint's surface (the iterate's residual is
+         large against the arc length, as where a crack opens across a bar in one step): take the point
+         of the line nearest to it, the real part of the complex roots (Lam and Morley 1992); the step
+         is then a little longer than dl and the next iterations come back to it */
+      *dlam = -B / (2 * A);
+      PetscCall(PetscInfo(NULL, "arclength: the corrector misses the constraint by %g: nearest point taken\n",
+                          (double)PetscSqrtReal(-disc / (4 * A * A))));
+      break;
+    }
     if (disc < 0) {
       *ok = PETSC_FALSE;
       break;

@@ -5,6 +5,8 @@
 #include "path.h"
 
 #define PD_MAX_STAGES 1000000
+/* branch changes of frozen bonds an increment may take before it counts as failed (path following's budget) */
+#define PD_MAX_FLIPS 30
 /* share of Newton's absolute tolerance a linear solve stops at (Predict) */
 #define PD_KSP_ATOL_SHARE 0.5
 /* GMRES restart: no solve of the half-notched beam needs more iterations; PETSc's default restart cut
@@ -246,11 +248,18 @@ typedef struct {
 /* One load increment: Newton stages until equilibrium holds with no deferred bond event. On a softening
    scene the increment's first Newton iteration is already a limiter stage: bringing the increment to
    equilibrium before the first grant (-pd_limiter_settle_first, the earlier default) settled it twice,
-   once before its events and once after, for the same curve (docs/benchmarks/solve_profile.md). */
-static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh, Vec u, StepResult *res) {
+   once before its events and once after, for the same curve (docs/benchmarks/solve_profile.md).
+   A bond whose stretch sits at its history switches between the loading slope and the secant from one
+   iterate to the next, and Newton can cycle for good (a reinforced beam as its first flexural crack
+   opens across the bar's bond-slip links: options/rc_beam_2d.opts). Where full Newton fails, every
+   softened bond is frozen on the branch it is on (branch, nbonds entries), which makes the equations
+   smooth, and Newton goes on from where it stopped. Equilibrium on frozen branches is that of the real
+   law once every bond lies on the side of its history its branch assumes; bonds on the wrong side
+   change branch (PDModelFlipBranches, as path following does: arclength.c Step) and Newton goes on. */
+static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh, unsigned char *branch, Vec u, StepResult *res) {
   const PDScene *sc      = m->scene;
   PetscBool      limited = m->softening && !sc->limiter_settle_first ? PETSC_TRUE : PETSC_FALSE;
-  PetscInt       maxit;
+  PetscInt       maxit, flips = 0;
   PetscReal      atol, rtol, stol;
 
   PetscFunctionBeginUser;
@@ -281,6 +290,24 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
       break;
     }
+    if (m->branch) {
+      PetscInt nflipped, nkink;
+      if (reason < 0) {
+        PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s on frozen branches", SNESConvergedReasons[reason]));
+        break;
+      }
+      PetscCall(PDModelFlipBranches(m, u, &nflipped, &nkink));
+      PetscCall(PetscInfo(snes, "frozen branches in equilibrium: %" PetscInt_FMT " bonds change branch, %" PetscInt_FMT " of them back\n",
+                          nflipped, nkink));
+      if (nflipped) {
+        if (++flips > PD_MAX_FLIPS) {
+          PetscCall(PetscSNPrintf(res->why, sizeof res->why, "frozen branches do not settle"));
+          break;
+        }
+        continue;
+      }
+      m->branch = NULL; /* every bond on its branch's side: the real law holds */
+    }
     PetscCall(PDModelGrantEvents(m, u, m->limiter_max, &ncand, &granted));
     m->rows_after_grant = granted && m->track_grants ? PETSC_TRUE : PETSC_FALSE;
     if (granted) {
@@ -300,9 +327,20 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       limited = PETSC_FALSE;
       continue;
     }
+    if (branch && flips < PD_MAX_FLIPS &&
+        (reason == SNES_DIVERGED_MAX_IT || reason == SNES_DIVERGED_DTOL || reason == SNES_DIVERGED_LINE_SEARCH)) {
+      PetscInt nfrozen;
+      PetscCall(PDModelFreezeBranches(m, u, branch, &nfrozen));
+      PetscCall(PetscInfo(snes, "Newton failed (%s): %" PetscInt_FMT " softened bonds frozen on their branch\n",
+                          SNESConvergedReasons[reason], nfrozen));
+      flips++;
+      if (nfrozen) continue;
+      m->branch = NULL;
+    }
     PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s", SNESConvergedReasons[reason]));
     break;
   }
+  m->branch = NULL; /* the next increment, or this one again, starts on the real law */
   PetscCall(SNESSetTolerances(snes, atol, rtol, stol, maxit, -1));
   PetscFunctionReturn(0);
 }
@@ -319,10 +357,12 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscBool      takeover     = PETSC_FALSE;
   PetscBool      linear_floor = PETSC_FALSE; /* linear solves stop at Newton's tolerance (LinearFloorApplies) */
   PDPCRefresh    refresh      = {0};
+  unsigned char *branch       = NULL; /* frozen branches where Newton cycles (SolveIncrement) */
   JacobianCtx    jctx         = {m, &refresh};
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateOperators(m, &J, &P));
+  if (m->softening) PetscCall(PetscMalloc1(m->bonds->nbonds, &branch));
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &r));
   PetscCall(PDPathCreate(m, &path));
@@ -354,7 +394,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
     PetscCall(PetscTime(&t0));
     if (!m->linear)
       PetscCall(Predict(m, snes, atol0, linear_floor, r, u, path.du, sc->predictor && dl_prev > 0 ? (lam - lambda_n) / dl_prev : 0));
-    PetscCall(SolveIncrement(m, snes, &refresh, u, &res));
+    PetscCall(SolveIncrement(m, snes, &refresh, branch, u, &res));
     PetscCall(PetscTime(&t1));
     rec->t_solve += (t1 - t0) - (m->t_assembly - asm0);
     rec->newton_its += res.its;
@@ -431,6 +471,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
   PetscCall(VecDestroy(&m->ka_u));
   PetscCall(VecDestroy(&m->r_last));
   PetscCall(SNESDestroy(&snes));
+  PetscCall(PetscFree(branch));
   PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&r));
