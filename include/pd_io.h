@@ -46,6 +46,7 @@ typedef struct {
   PetscReal eig_est, eig_bound; /* largest eigenvalue of M^-1 K: power-iteration estimate, Gershgorin bound (1/s^2) */
   PetscReal dt_stable, dt;      /* stable step 2/sqrt(eig_est) and step used (s) */
   PetscReal dt_eq46;            /* the estimate of THEORY.md Eq. 4.6 (s) */
+  PetscReal bar_mass_added;     /* explicit: mass added to bar nodes by -pd_bar_mass_scaling (kg) */
   PetscInt  time_steps;
   PetscReal ke_max;  /* largest kinetic energy at a recorded step (J) */
   PetscReal v_peak;  /* largest nodal velocity (m/s) */

@@ -195,6 +195,7 @@ typedef struct {
   PetscBool        has_cmod;
   PetscReal        cmod[6];          /* two gauge points */
   PetscInt         steps;            /* load steps */
+  PetscBool        bar_mass_scaling; /* explicit: bar nodes' mass raised to the concrete's stable step */
   PetscBool        predictor;        /* load/displacement control: secant predictor from the last increment */
   PetscBool        control_fallback; /* load/displacement control: path following where it finds no equilibrium */
   PetscInt         fields_every;

@@ -182,10 +182,11 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
         "  \"explicit\": {\"eigenvalue_estimate_per_s2\": %.10e, \"power_iterations\": %" PetscInt_FMT
         ", \"eigenvalue_gershgorin_per_s2\": %.10e, \"dt_stable_s\": %.10e, \"dt_gershgorin_s\": %.10e, \"dt_eq46_s\": %.10e, "
         "\"dt_safety\": %.10e, \"dt_s\": %.10e, \"time_steps\": %" PetscInt_FMT
-        ", \"kinetic_energy_max_J\": %.6e, \"velocity_max_m_per_s\": %.6e, \"stretch_per_step_max\": %.6e, \"damping\": %.6e},\n",
+        ", \"kinetic_energy_max_J\": %.6e, \"velocity_max_m_per_s\": %.6e, \"stretch_per_step_max\": %.6e, \"damping\": %.6e, "
+        "\"bar_mass_added_kg\": %.6e},\n",
         (double)rec->eig_est, sc->dt_power_its, (double)rec->eig_bound, (double)rec->dt_stable, (double)(2 / PetscSqrtReal(rec->eig_bound)),
         (double)rec->dt_eq46, (double)sc->dt_safety, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)rec->v_peak,
-        (double)rec->ds_peak, (double)sc->damping));
+        (double)rec->ds_peak, (double)sc->damping, (double)rec->bar_mass_added));
   if (sc->failure_search) {
     PetscCall(PetscFPrintf(
         comm, fp, "  \"failure_search\": {\"criterion\": \"%s\", \"tolerance\": %.6e, \"lower_N\": %.6e, \"upper_N\": %.6e, \"trials\": [",

@@ -110,6 +110,8 @@ static PetscErrorCode ReadExplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_dt_power_its", &sc->dt_power_its, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_damping", &sc->damping, NULL));
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_adr", &sc->adr, NULL));
+  sc->bar_mass_scaling = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_bar_mass_scaling", &sc->bar_mass_scaling, NULL));
   PetscCheck(!(sc->adr && sc->damping > 0), comm, PETSC_ERR_USER_INPUT, "Option -pd_adr: sets its own damping; drop -pd_damping %g",
              (double)sc->damping);
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_output_stride", &sc->out_stride, NULL));

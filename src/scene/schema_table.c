@@ -697,6 +697,12 @@ const PDOptionSpec PDOptionSchema[] = {
      .range = "[1, inf)",
      .when  = PD_WHEN_EXPLICIT,
      .help  = "Power iterations estimating the largest eigenvalue of the mass-scaled stiffness"},
+    {.name = "-pd_bar_mass_scaling",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_EXPLICIT,
+     .help = "Raise the mass of bar nodes (bond slip) so that they do not set a smaller stable step than the concrete "
+             "(selective mass scaling; summary.json explicit.bar_mass_added_kg); false: the steel's own mass"},
     {.name  = "-pd_damping",
      .type  = PD_OPTION_REAL,
      .unit  = "kg/(m^3 s)",

@@ -342,18 +342,51 @@ static PetscErrorCode PostStep(TS ts) {
   PetscFunctionReturn(0);
 }
 
-/* Nodal masses: rho V per dof, or dynamic relaxation's fictitious ones. */
-static PetscErrorCode Mass(PDModel *m, Vec mass) {
-  PetscScalar *ms;
+/* Nodal masses: rho V per dof, or dynamic relaxation's fictitious ones.
+   A bar node (bond slip) carries the steel of its share of the bar, a few per cent of a lattice node's
+   mass, on the stiff start of the bond-slip law: its own frequency would set the stable step, half the
+   concrete's on options/rc_beam_2d.opts. Its mass is raised to what keeps its Gershgorin bound (row sum
+   of the elastic stiffness over the mass) at the lattice's largest, so the concrete sets the step
+   (selective mass scaling, as explicit codes use for quasi-static runs); the mass added is reported. */
+static PetscErrorCode Mass(PDModel *m, Vec mass, PetscReal *added) {
+  const PDLattice   *lat = m->lat;
+  const PetscInt     bs  = m->bs;
+  PetscScalar       *ms;
+  const PetscScalar *rb, *fx;
+  Vec                row;
+  PetscReal          gmax = 0, mine = 0;
 
   PetscFunctionBeginUser;
+  *added = 0;
   if (m->scene->adr) {
     PetscCall(AdrMass(m, mass));
     PetscFunctionReturn(0);
   }
   PetscCall(VecGetArray(mass, &ms));
-  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) ms[k] = PDModelNodeMass(m, k / m->bs);
+  for (PetscInt k = 0; k < bs * lat->nowned; k++) ms[k] = PDModelNodeMass(m, k / bs);
   PetscCall(VecRestoreArray(mass, &ms));
+  if (!lat->barnode || !m->scene->bar_mass_scaling) PetscFunctionReturn(0);
+  PetscCall(VecDuplicate(mass, &row));
+  PetscCall(PDModelStiffnessRowBound(m, row));
+  PetscCall(VecGetArray(mass, &ms));
+  PetscCall(VecGetArrayRead(row, &rb));
+  PetscCall(VecGetArrayRead(m->fixed, &fx));
+  for (PetscInt k = 0; k < bs * lat->nowned; k++)
+    if (lat->barnode[k / bs] < 0 && PetscRealPart(fx[k]) == 0) gmax = PetscMax(gmax, PetscRealPart(rb[k] / ms[k]));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &gmax, 1, MPIU_REAL, MPIU_MAX, lat->comm));
+  for (PetscInt i = 0; gmax > 0 && i < lat->nowned; i++) {
+    PetscReal need = 0;
+    if (lat->barnode[i] < 0) continue;
+    for (PetscInt a = 0; a < bs; a++) need = PetscMax(need, PetscRealPart(rb[bs * i + a]) / gmax);
+    if (need <= PetscRealPart(ms[bs * i])) continue;
+    mine += need - PetscRealPart(ms[bs * i]);
+    for (PetscInt a = 0; a < bs; a++) ms[bs * i + a] = need;
+  }
+  PetscCall(VecRestoreArrayRead(m->fixed, &fx));
+  PetscCall(VecRestoreArrayRead(row, &rb));
+  PetscCall(VecRestoreArray(mass, &ms));
+  PetscCall(VecDestroy(&row));
+  PetscCall(MPIU_Allreduce(&mine, added, 1, MPIU_REAL, MPIU_SUM, lat->comm));
   PetscFunctionReturn(0);
 }
 
@@ -377,7 +410,7 @@ PetscErrorCode PDExplicitPlan(PDModel *m, PDRecord *rec) {
 
   PetscFunctionBeginUser;
   PetscCall(VecDuplicate(m->f_ref, &mass));
-  PetscCall(Mass(m, mass));
+  PetscCall(Mass(m, mass, &rec->bar_mass_added));
   PetscCall(LargestEigenvalue(m, mass, &rec->eig_est, &rec->eig_bound));
   PetscCall(VecDestroy(&mass));
   PetscCall(Eq46TimeStep(m, &rec->dt_eq46));
@@ -407,7 +440,7 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   PetscCall(VecDuplicate(m->f_ref, &c->f_int));
   PetscCall(VecDuplicate(m->f_ref, &c->u_prev));
   PetscCall(VecDuplicate(m->f_ref, &c->f_ext));
-  PetscCall(Mass(m, c->mass));
+  PetscCall(Mass(m, c->mass, &rec->bar_mass_added));
   if (sc->adr) {
     PetscCall(VecDuplicate(m->f_ref, &c->adr_r));
     PetscCall(VecDuplicate(m->f_ref, &c->adr_u));
