@@ -23,11 +23,15 @@ BEAM = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 AREA, FC, FT = 0.1 * 0.1, 42.3e6, 3.9e6  # section (m^2, both prisms), strengths (Pa)
 
 # name, what, scene, extra options
+# The implicit runs stop where displacement control loses the path, at the first peak: path following past it
+# carries the load up again on the columns of bonds along the load, elastic in compression once the bonds across it
+# have failed (docs/softening.md)
+FIRST_PEAK = ["-pd_control_fallback", "false"]
 CASES = [
-    ("prism_off", "prism, no -pd_fc (the thesis' bond)", PRISM, ["-pd_fc", "0"]),
-    ("prism_on", "prism, -pd_fc 42.3e6", PRISM, []),
-    ("prism_off_scatter", "prism, no -pd_fc, 5 % strength scatter", PRISM, ["-pd_fc", "0", "-pd_strength_scatter", "0.05"]),
-    ("prism_on_scatter", "prism, -pd_fc 42.3e6, 5 % strength scatter", PRISM, ["-pd_strength_scatter", "0.05"]),
+    ("prism_off", "prism, no -pd_fc (the thesis' bond)", PRISM, ["-pd_fc", "0", *FIRST_PEAK]),
+    ("prism_on", "prism, -pd_fc 42.3e6", PRISM, FIRST_PEAK),
+    ("prism_off_scatter", "prism, no -pd_fc, 5 % strength scatter", PRISM, ["-pd_fc", "0", "-pd_strength_scatter", "0.05", *FIRST_PEAK]),
+    ("prism_on_scatter", "prism, -pd_fc 42.3e6, 5 % strength scatter", PRISM, ["-pd_strength_scatter", "0.05", *FIRST_PEAK]),
     ("prism_off_explicit", "prism, no -pd_fc, explicit path", PRISM, ["-pd_fc", "0", "-pd_mode", "explicit"]),
     ("prism_on_explicit", "prism, -pd_fc 42.3e6, explicit path", PRISM, ["-pd_mode", "explicit"]),
     ("prism3d_off_explicit", "3D prism (dx = 10 mm), no -pd_fc, explicit path", PRISM3D, ["-pd_fc", "0", "-pd_mode", "explicit"]),

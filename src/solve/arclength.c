@@ -80,10 +80,11 @@ typedef struct {
   PetscReal   len_prev; /* the last accepted step's length in the units of the next one */
   Vec         xg;       /* IMPL-EX under the augmented corrector: the last step's first correction (-pd_arclength_guess) */
   PetscBool   have_xg;
-  PetscInt    rejects; /* IMPL-EX steps made again shorter since the last accepted one */
-  Reversal    rev;     /* load reversal; while unloading (phase 1) the cmod gauge closes */
-  PetscBool   turn;    /* the next predictor goes against the last step (load reversal) */
-  const char *why;     /* why the last step failed */
+  PetscInt    rejects;      /* IMPL-EX steps made again shorter since the last accepted one */
+  PetscBool   root_flipped; /* this step is being taken again with the predictor's other root */
+  Reversal    rev;          /* load reversal; while unloading (phase 1) the cmod gauge closes */
+  PetscBool   turn;         /* the next predictor goes against the last step (load reversal) */
+  const char *why;          /* why the last step failed */
   /* between steps */
   PetscInt  type;            /* constraint, or ARC_LOAD: plain control (the first step, and under auto until softening) */
   PetscReal dl, dl0, dlam;   /* arc length, the first one, load-factor increment under plain control */
@@ -829,6 +830,22 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
       }
       a.rejects = 0;
     }
+    if ((a.type == PD_ARC_CYLINDRICAL || a.type == PD_ARC_SPHERICAL) && a.lam < path.lambda_n && sc->unload_at <= 0 && !a.root_flipped) {
+      /* at a limit point the path can turn back onto elastic unloading, which a displacement-norm
+         constraint cannot tell from a snap-back (the small reinforced beam after its bar yields: the load
+         fell back to zero and the run ended as separated). A step that lowers the load factor and
+         dissipates nothing is taken again once with the predictor's other root. */
+      PetscReal stored, dis, d_n = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0;
+      PetscCall(PDModelEnergy(m, a.u, &stored, &dis));
+      if (dis <= d_n + 1e-9 * PetscAbsReal(d_n)) {
+        PetscCall(
+            PetscInfo(NULL, "arclength: step %" PetscInt_FMT " unloads elastically: taken again with the other root\n", path.step + 1));
+        PetscCall(PDModelRestoreLevels(m));
+        a.turn = a.root_flipped = PETSC_TRUE;
+        continue;
+      }
+    }
+    a.root_flipped = PETSC_FALSE;
     if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;

@@ -251,7 +251,8 @@ typedef struct {
    once before its events and once after, for the same curve (docs/benchmarks/solve_profile.md).
    A bond whose stretch sits at its history switches between the loading slope and the secant from one
    iterate to the next, and Newton can cycle for good (a reinforced beam as its first flexural crack
-   opens across the bar's bond-slip links: options/rc_beam_2d.opts). Where full Newton fails, every
+   opens across the bar's bond-slip links: options/rc_beam_2d.opts). Where full Newton on the consistent
+   tangent fails (the secant tangent has no slope to switch: it converges slowly rather than cycles), every
    softened bond is frozen on the branch it is on (branch, nbonds entries), which makes the equations
    smooth, and Newton goes on from where it stopped. Equilibrium on frozen branches is that of the real
    law once every bond lies on the side of its history its branch assumes; bonds on the wrong side
@@ -327,7 +328,7 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       limited = PETSC_FALSE;
       continue;
     }
-    if (branch && flips < PD_MAX_FLIPS &&
+    if (branch && sc->tangent == PD_TANGENT_CONSISTENT && flips < PD_MAX_FLIPS &&
         (reason == SNES_DIVERGED_MAX_IT || reason == SNES_DIVERGED_DTOL || reason == SNES_DIVERGED_LINE_SEARCH)) {
       PetscInt nfrozen;
       PetscCall(PDModelFreezeBranches(m, u, branch, &nfrozen));
