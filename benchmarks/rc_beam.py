@@ -59,7 +59,10 @@ def section():
 def delaminated(outdir):
     """Length (m) of the bar's node line whose nodal damage exceeds 0.5 at the last fields written."""
     import numpy as np
-    x, _, d = last_fields(outdir)
+    fields = last_fields(outdir)
+    if fields is None:  # a run stopped at its step cap writes no fields
+        return None
+    x, _, d = fields
     on = np.abs(x[:, 1] - 0.035) < 1e-9  # a bar node (bond slip) has damage 0: only the concrete counts
     return float(np.sum(d[on] > 0.5)) * 0.01
 
@@ -111,10 +114,10 @@ def report():
     for name, _, _ in CASES:
         r = res["runs"][name]
         ratio = r.get("steel_over_section")
-        lines.append("| %s | %.0f | %.2f | %.0f | %s | %s | %s | %d | %.2f | %.1f | %s | %s |" % (
+        lines.append("| %s | %.0f | %.2f | %.0f | %s | %s | %s | %d | %s | %.1f | %s | %s |" % (
             r["what"], r["peak_N"], r["peak_N"] / s["P_y_N"], r["steel_stress_at_peak_Pa"] / 1e6,
             "%.0f" % r["first_yield_N"] if r["first_yield_N"] else "none", "%.2f" % (r["first_yield_N"] / s["P_y_N"]) if r["first_yield_N"] else "-",
-            "%.2f" % ratio if ratio else "-", r["broken_bonds"], r["delaminated_m"], r["cpu_s"], r.get("commit", "before 4e4abbb"),
+            "%.2f" % ratio if ratio else "-", r["broken_bonds"], "%.2f" % r["delaminated_m"] if r["delaminated_m"] is not None else "-", r["cpu_s"], r.get("commit", "before 4e4abbb"),
             status(r["status"])))
     lines += ["", "Commands: `build/pdimplicit -options_file options/rc_beam_2d.opts` with the options of each run:", ""]
     lines += ["    %s" % " ".join(c[2]) for c in CASES]

@@ -82,6 +82,7 @@ typedef struct {
   PetscBool   have_xg;
   PetscInt    rejects;      /* IMPL-EX steps made again shorter since the last accepted one */
   PetscBool   root_flipped; /* this step is being taken again with the predictor's other root */
+  PetscReal   dlam_pred;    /* the load-factor change of the step's predictor */
   Reversal    rev;          /* load reversal; while unloading (phase 1) the cmod gauge closes */
   PetscBool   turn;         /* the next predictor goes against the last step (load reversal) */
   const char *why;          /* why the last step failed */
@@ -198,14 +199,14 @@ static PetscErrorCode ConstraintUpdate(Arc *a, PDPath *p, PetscInt type, PetscRe
     B    = 2 * (PetscRealPart(vw) + psi2 * Dl);
     C    = PetscRealPart(ww) + psi2 * Dl * Dl - dl * dl;
     disc = B * B - 4 * A * C;
-    if (disc < 0 && !predictor) {
+    if (disc < 0 && !predictor && PetscSqrtReal(dl * dl - disc / (4 * A)) <= 2 * dl) {
       /* the corrector's line u + du_I + dlam v misses the constraint's surface (the iterate's residual is
-         large against the arc length, as where a crack opens across a bar in one step): take the point
-         of the line nearest to it, the real part of the complex roots (Lam and Morley 1992); the step
-         is then a little longer than dl and the next iterations come back to it */
+         large against the arc length, as where a crack opens across a bar in one step): where the line
+         passes within dl of it, take its nearest point, the real part of the complex roots (Lam and
+         Morley 1992); the step is then up to twice dl long. Farther off, the step is cut. */
       *dlam = -B / (2 * A);
-      PetscCall(PetscInfo(NULL, "arclength: the corrector misses the constraint by %g: nearest point taken\n",
-                          (double)PetscSqrtReal(-disc / (4 * A * A))));
+      PetscCall(PetscInfo(NULL, "arclength: the corrector passes %g arc lengths from the constraint: nearest point taken\n",
+                          (double)(PetscSqrtReal(dl * dl - disc / (4 * A)) / dl - 1)));
       break;
     }
     if (disc < 0) {
@@ -364,6 +365,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   if (!fine) PetscFunctionReturn(0);
   PetscCall(VecAXPY(a->u, dlam, a->v));
   a->lam += dlam;
+  a->dlam_pred = dlam;
   /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
      soften together takes many grants, each a small perturbation Newton absorbs in a few iterations */
   for (PetscInt k = 0, stages = 0, rises = 0, flips = 0, damped = 0; k < maxit; k++) {
@@ -775,8 +777,8 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     PetscReal  len = a.type == ARC_LOAD ? PetscMin(a.dlam, sc->lambda_max - path.lambda_n) : a.dl;
 
     PetscCall(Step(&a, &path, a.type, len, &max_events, &ok));
-    m->branch = NULL; /* a step ends with the real law */
-    if (ok) a.turn = PETSC_FALSE;
+    m->branch = NULL;                               /* a step ends with the real law */
+    if (ok || a.root_flipped) a.turn = PETSC_FALSE; /* a failed retry on the other root goes back to the first, unchecked */
     rec->newton_its += a.its;
     rec->ksp_its += a.lits;
     if (!ok) {
@@ -830,11 +832,13 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
       }
       a.rejects = 0;
     }
-    if ((a.type == PD_ARC_CYLINDRICAL || a.type == PD_ARC_SPHERICAL) && a.lam < path.lambda_n && sc->unload_at <= 0 && !a.root_flipped) {
+    if ((a.type == PD_ARC_CYLINDRICAL || a.type == PD_ARC_SPHERICAL) && a.dlam_pred < 0 && a.lam < path.lambda_n && sc->unload_at <= 0 &&
+        !a.root_flipped) {
       /* at a limit point the path can turn back onto elastic unloading, which a displacement-norm
          constraint cannot tell from a snap-back (the small reinforced beam after its bar yields: the load
-         fell back to zero and the run ended as separated). A step that lowers the load factor and
-         dissipates nothing is taken again once with the predictor's other root. */
+         fell back to zero and the run ended as separated). A step whose predictor lowered the load
+         factor, and that lowers it and dissipates nothing, is taken again once with the predictor's
+         other root. */
       PetscReal stored, dis, d_n = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0;
       PetscCall(PDModelEnergy(m, a.u, &stored, &dis));
       if (dis <= d_n + 1e-9 * PetscAbsReal(d_n)) {

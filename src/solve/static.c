@@ -5,7 +5,7 @@
 #include "path.h"
 
 #define PD_MAX_STAGES 1000000
-/* branch changes of frozen bonds an increment may take before it counts as failed (path following's budget) */
+/* freezes and branch changes an increment may take before it counts as failed (path following's budget) */
 #define PD_MAX_FLIPS 30
 /* share of Newton's absolute tolerance a linear solve stops at (Predict) */
 #define PD_KSP_ATOL_SHARE 0.5
@@ -292,22 +292,35 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       break;
     }
     if (m->branch) {
-      PetscInt nflipped, nkink;
+      PetscInt  nflipped, nkink;
+      PetscReal fz, fr;
+      Vec       r;
       if (reason < 0) {
         PetscCall(PetscSNPrintf(res->why, sizeof res->why, "%s on frozen branches", SNESConvergedReasons[reason]));
         break;
       }
-      PetscCall(PDModelFlipBranches(m, u, &nflipped, &nkink));
-      PetscCall(PetscInfo(snes, "frozen branches in equilibrium: %" PetscInt_FMT " bonds change branch, %" PetscInt_FMT " of them back\n",
-                          nflipped, nkink));
-      if (nflipped) {
-        if (++flips > PD_MAX_FLIPS) {
+      /* equilibrium on frozen branches: does the real law hold there too? (its residual, with its tangent
+         scalars, is then the last one, which a limiter grant's row update starts from) */
+      PetscCall(SNESGetFunctionNorm(snes, &fz));
+      m->branch         = NULL;
+      m->ka_at_residual = PETSC_FALSE;
+      PetscCall(SNESGetFunction(snes, &r, NULL, NULL));
+      PetscCall(SNESComputeFunction(snes, u, r));
+      PetscCall(VecNorm(r, NORM_2, &fr));
+      if (fr > PetscMax(atol, fz)) {
+        m->branch = branch;
+        PetscCall(PDModelFlipBranches(m, u, &nflipped, &nkink));
+        PetscCall(PetscInfo(snes,
+                            "frozen branches in equilibrium, real law |R| %g: %" PetscInt_FMT " bonds change branch, %" PetscInt_FMT
+                            " of them back\n",
+                            (double)fr, nflipped, nkink));
+        m->ka_at_residual = m->rows_after_grant = PETSC_FALSE;
+        if (!nflipped || ++flips > PD_MAX_FLIPS) {
           PetscCall(PetscSNPrintf(res->why, sizeof res->why, "frozen branches do not settle"));
           break;
         }
         continue;
       }
-      m->branch = NULL; /* every bond on its branch's side: the real law holds */
     }
     PetscCall(PDModelGrantEvents(m, u, m->limiter_max, &ncand, &granted));
     m->rows_after_grant = granted && m->track_grants ? PETSC_TRUE : PETSC_FALSE;
@@ -334,6 +347,8 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       PetscCall(PDModelFreezeBranches(m, u, branch, &nfrozen));
       PetscCall(PetscInfo(snes, "Newton failed (%s): %" PetscInt_FMT " softened bonds frozen on their branch\n",
                           SNESConvergedReasons[reason], nfrozen));
+      m->ka_at_residual = m->rows_after_grant = PETSC_FALSE;
+      limited                                 = PETSC_FALSE; /* the frozen solve is full Newton */
       flips++;
       if (nfrozen) continue;
       m->branch = NULL;
@@ -363,7 +378,7 @@ PetscErrorCode PDStaticRun(PDModel *m, PDRecord *rec) {
 
   PetscFunctionBeginUser;
   PetscCall(PDModelCreateOperators(m, &J, &P));
-  if (m->softening) PetscCall(PetscMalloc1(m->bonds->nbonds, &branch));
+  if (m->softening) PetscCall(PetscMalloc1(PetscMax(1, m->bonds->nbonds), &branch)); /* on every rank: freezing is collective */
   PetscCall(VecDuplicate(m->f_ref, &u));
   PetscCall(VecDuplicate(m->f_ref, &r));
   PetscCall(PDPathCreate(m, &path));
