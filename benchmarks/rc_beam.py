@@ -81,7 +81,7 @@ def measure(names):
         k = max(range(len(rows)), key=lambda i: rows[i]["load_N"])
         first = next((r for r in rows if r["yielded_segments"] > 0), None)
         # the steel stress over the cracked section's at the same load, at the last row before the bar yields (or the last)
-        before = [r for r in rows if r["yielded_segments"] == 0 and r["load_N"] > section()["P_cr_N"]]
+        before = [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]
         ratio = before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * SPAN / 4 / (AS * section()["lever_arm_m"])) if before else None
         status = open(os.path.join(out, "log")).read().strip().splitlines()[-1]
         res["runs"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "status": status,
