@@ -108,7 +108,7 @@ def report():
              "P_y = 4 A_s f_y (1 - k/3) d / L = %.0f N (k = %.3f). Delaminated: length of the bar's node line whose nodes' damage "
              "exceeds 0.5 at the end." % (s["P_cr_N"], s["P_y_N"], s["k"]), "",
              "Steel / section: the bar's largest stress over the cracked section's at the same load, M / (A_s z), at the last row "
-             "above P_cr before the bar yields.", "",
+             "with broken bonds before the bar yields (or the last row).", "",
              "| run | peak (N) | peak / P_y | steel stress at the peak (MPa) | first yield (N) | first yield / P_y | steel / section | broken bonds | delaminated (m) | CPU (s) | commit | end |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, _, _ in CASES:
