@@ -833,6 +833,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
       }
       a.rejects = 0;
     }
+    d_prev = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */
     if ((a.type == PD_ARC_CYLINDRICAL || a.type == PD_ARC_SPHERICAL) && a.dlam_pred < 0 && a.lam < path.lambda_n && sc->unload_at <= 0 &&
         !a.root_flipped) {
       /* at a limit point the path can turn back onto elastic unloading, which a displacement-norm
@@ -840,9 +841,9 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
          fell back to zero and the run ended as separated). A step whose predictor lowered the load
          factor, and that lowers it and dissipates nothing, is taken again once with the predictor's
          other root. */
-      PetscReal stored, dis, d_n = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0;
+      PetscReal stored, dis;
       PetscCall(PDModelEnergy(m, a.u, &stored, &dis));
-      if (dis <= d_n + 1e-9 * PetscAbsReal(d_n)) {
+      if (dis <= d_prev + 1e-9 * PetscAbsReal(d_prev)) {
         PetscCall(
             PetscInfo(NULL, "arclength: step %" PetscInt_FMT " unloads elastically: taken again with the other root\n", path.step + 1));
         PetscCall(PDModelRestoreLevels(m));
@@ -854,7 +855,6 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
-    d_prev   = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */
     PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
     if (a.kx_n) { /* the histories move on by a step: the oldest buffer takes the new one */
       PetscReal *t = a.kx_prev;
