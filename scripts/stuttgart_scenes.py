@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Writes the Stuttgart shear beams of Leonhardt and Walther as the Hobbs thesis models them (Ch. 7,
-Tables 7.1 and 7.2): options/stuttgart_beam{1,2,3,4,5,6,7,8,10}.opts in 3D, and with --dim 2 plane-stress
-versions (thickness 190 mm, the two bars lumped on one line) into a folder given with --out.
+Tables 7.1 and 7.2): options/stuttgart_beam{1,2,3,4,5,6,7,8,10}.opts in 3D, and with --dim 2 the plane-stress
+versions options/stuttgart_beam{...}_2d.opts (thickness 190 mm, the two bars lumped on one line).
 
 Section 190 x 320 mm, d = 270 mm, two 26 mm bars (A_s = 1,062 mm^2, E_s = 208 GPa, f_y = 465 MPa,
 perfectly plastic); four-point bending, span L, shear span L_1 (Table 7.1). Concrete: E_c and G_F from
@@ -9,9 +9,11 @@ Table 7.1, f_t = 0.3 (f_cm - 8)^(2/3) MPa (fib Model Code 2010, f_cm the cylinde
 law with k_r = 25 as the thesis, dx = 11.5 mm. Not in the tables, and chosen here: the beam runs 150 mm past
 each support; supports and loads sit on 100 x 20 mm steel bearing plates across the width, each held or
 pushed along one line of nodes at its middle (a roller or a hinge), so that the plate can turn. Each load
-point moves down by the same amount; the curve's load is one load point's reaction, the thesis's P.
+point moves down by the same amount; the curve's load is one load point's reaction, half the thesis's P
+(Table 7.3 gives the total of both point loads: Eurocode 2's flexural P = 2 M_u / L_1 for beams 8 and 10).
+The bars are bonded by the fib Model Code 2010 bond-slip law with f_cm of the table (docs/reinforcement.md).
 
-Usage: scripts/stuttgart_scenes.py [--dim 2 --out FOLDER]   (from the repository root)
+Usage: scripts/stuttgart_scenes.py [--dim 2] [--out FOLDER]   (from the repository root; FOLDER by default options/)
 """
 import math
 import os
@@ -51,7 +53,7 @@ def scene(n, dim, outdir):
                             "-pd_ft %.6g" % ft, "-pd_Gf %g" % gf]
     for k, (where, count) in enumerate(bars):
         lines += ["-pd_bar%d_line %s" % (k, where), "-pd_bar%d_diameter 0.026" % k, "-pd_bar%d_count %d" % (k, count),
-                  "-pd_bar%d_E 208e9" % k, "-pd_bar%d_fy 465e6" % k]
+                  "-pd_bar%d_E 208e9" % k, "-pd_bar%d_fy 465e6" % k, "-pd_bar%d_bond slip" % k, "-pd_bar%d_fcm %g" % (k, fcm * 1e6)]
     plates = [(x0, 0, PT), (x0 + L, 0, PT), (loads[0], H - PT, H), (loads[1], H - PT, H)]
     for k, (x, za, zb) in enumerate(plates):
         lines += ["-pd_plate%d_box %s" % (k, box(x - PLATE / 2, za, x + PLATE / 2, zb))]

@@ -103,8 +103,24 @@ static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
   PetscFunctionReturn(0);
 }
 
+/* Failure mode of a reinforced member (docs/reinforcement.md, "Failure mode"): none unless the curve ends
+   PD_FAILURE_DROP or more below its peak; flexure where a bar yielded before the load fell for good (the
+   last row at or above 1 - PD_FAILURE_DROP of the peak: an explicit curve oscillates about it, so its
+   largest spike does not date the failure); shear (or anchorage) where the member failed with its bars
+   elastic. */
+#define PD_FAILURE_DROP 0.1
+static const char *FailureMode(const PDRecord *rec, PetscInt first_yield) {
+  PetscReal peak = PETSC_MIN_REAL;
+  PetscInt  held = 0;
+  for (PetscInt r = 0; r < rec->nrows; r++) peak = PetscMax(peak, rec->rows[r].load);
+  for (PetscInt r = 0; r < rec->nrows; r++)
+    if (rec->rows[r].load >= (1 - PD_FAILURE_DROP) * peak) held = r;
+  if (!rec->nrows || held == rec->nrows - 1) return "none";
+  return first_yield >= 0 && first_yield <= held ? "flexure" : "shear";
+}
+
 /* Steel bars: each bar's area, axial stiffness and yield force as built, the segments, how many yielded,
-   where the first one did (the first step with a yielded segment), and the largest steel stress. */
+   where the first one did (the first step with a yielded segment), the largest steel stress and the failure mode. */
 static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const PDRecord *rec) {
   const PDScene *sc    = m->scene;
   PetscInt       first = -1;
@@ -138,10 +154,11 @@ static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const
                          ",\n    \"max_steel_stress_Pa\": %.10e,\n    \"bar_nodes\": %" PetscInt_FMT ",\n    \"max_slip_m\": %.10e,\n",
                          m->bonds->nseg_global, m->yielded, (double)smax, m->lat->nbarnodes, (double)slip));
   if (first >= 0)
-    PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": {\"step\": %" PetscInt_FMT ", \"load_N\": %.10e, \"disp_m\": %.10e}\n  },\n",
+    PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": {\"step\": %" PetscInt_FMT ", \"load_N\": %.10e, \"disp_m\": %.10e},\n",
                            rec->rows[first].step, (double)rec->rows[first].load, (double)rec->rows[first].disp));
   else
-    PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": null\n  },\n"));
+    PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": null,\n"));
+  PetscCall(PetscFPrintf(comm, fp, "    \"failure_mode\": \"%s\"\n  },\n", FailureMode(rec, first)));
   PetscFunctionReturn(0);
 }
 

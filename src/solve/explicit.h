@@ -31,6 +31,7 @@ struct PDExplicit {
   PetscReal         ke_max;       /* largest kinetic energy recorded (J) */
   PetscReal         v_peak;       /* largest nodal velocity seen (m/s) */
   PetscReal         ds_peak;      /* largest stretch gained by a bond in one step, at the checks */
+  PetscReal         imbalance;    /* energy balance's error where the instability check fired */
   PetscReal         w_ext;        /* external work so far (J) */
   PetscReal         w_damp;       /* kinetic energy removed by damping so far, this rank (J) */
   PetscBool         stopped;      /* the CMOD stop or the monitor ended the integration */

@@ -1,0 +1,130 @@
+#!/usr/bin/python3
+"""The Stuttgart shear beams of Leonhardt and Walther (Hobbs thesis Ch. 7) against the experiments, Eurocode 2
+and the thesis's peridynamic model (Table 7.3): pdimplicit's peak load, failure mode (summary.json, the
+criterion of docs/reinforcement.md), load-point deflection at the peak, wall and CPU time, nodes and bonds
+for each beam. The scenes are the plane-stress ones, options/stuttgart_beam{N}_2d.opts (scripts/stuttgart_scenes.py),
+traced on the explicit path with a ramp slow enough that the kinetic energy stays a small part of the work
+(it is reported). P is the total of both point loads, twice the curve's load.
+Writes docs/benchmarks/stuttgart.json, stuttgart.md and stuttgart.png.
+
+Usage: benchmarks/stuttgart.py [--report | BEAM ...]   (BEAM: numbers to run, keeping the others' results)
+"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, load_results
+
+JSON = os.path.join(RESULTS_DIR, "stuttgart.json")
+COMMIT = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
+# Table 7.3: beam -> (a_v/d, experimental P (kN) of each test, mode, Eurocode 2 P, mode, thesis PD normal mesh P, mode)
+TABLE = {1: (1.0, (777,), "shear", 287, "shear", 335, "shear"), 2: (1.5, (520,), "shear", 194, "shear", 253, "shear"),
+         3: (2.0, (294,), "shear", 144, "shear", 170, "shear"), 4: (2.5, (161,), "shear", 144, "shear", 131, "shear"),
+         5: (3.0, (118,), "shear", 144, "shear", 112, "shear"), 6: (4.0, (118,), "shear", 144, "shear", 85, "shear"),
+         7: (5.0, (120, 131), "shear", 144, "shear", 87, "shear"), 8: (6.0, (126, 126), "shear", 125, "flexure", 76, "flexure"),
+         10: (8.0, (94, 103), "flexure", 93, "flexure", 56, "flexure")}
+# load-point displacement traced (m) and the ramp's rate (m/s): the rate keeps the kinetic energy small; a
+# slender beam needs a longer travel to fail, so its ramp is longer in time
+TRAVEL = {1: 0.003, 2: 0.003, 3: 0.003, 4: 0.004, 5: 0.006, 6: 0.010, 7: 0.014, 8: 0.020, 10: 0.060}
+RATE = 0.003 / 0.57
+
+
+def scene_without_stop(n, folder):
+    """The beam's scene without -pd_stop_fraction, which path following takes and the explicit path refuses."""
+    src = os.path.join(ROOT, "options", "stuttgart_beam%d_2d.opts" % n)
+    path = os.path.join(folder, os.path.basename(src))
+    with open(src) as f, open(path, "w") as g:
+        g.writelines(line for line in f if not line.startswith("-pd_stop_fraction"))
+    return path
+
+
+def measure(beams):
+    res = load_results(JSON)
+    runs = {b["beam"]: b for b in res.get("beams", [])}
+    for n in TABLE:
+        if beams and n not in beams:
+            continue
+        out = tempfile.mkdtemp(prefix="pdbench_")
+        extra = ["-pd_mode", "explicit", "-pd_lambda_max", "%g" % (TRAVEL[n] / 0.02), "-pd_ramp_time", "%g" % (TRAVEL[n] / RATE)]
+        with open(os.path.join(out, "log"), "w") as log:
+            code, wall, cpu, _ = run_timed([EXE, "-options_file", scene_without_stop(n, out), "-pd_output_dir", out, *extra], 7200, log)
+        rows = curve_rows(out)
+        s = json.load(open(os.path.join(out, "summary.json")))
+        k = max(range(len(rows)), key=lambda i: rows[i]["load_N"])
+        runs[n] = {"beam": n, "peak_kN": 2 * rows[k]["load_N"] / 1e3, "mode": s["bars"]["failure_mode"], "wall_s": round(wall, 1), "cpu_s": round(cpu, 1),
+                   "nodes": s["nodes"], "bonds": s["bonds"], "disp_at_peak_m": rows[k]["disp_m"], "end_load_kN": 2 * rows[-1]["load_N"] / 1e3,
+                   "first_yield_kN": 2 * s["bars"]["first_yield"]["load_N"] / 1e3 if s["bars"]["first_yield"] else None,
+                   "kinetic_over_work_at_peak": rows[k]["kinetic_J"] / rows[k]["external_J"], "options": extra, "exit": code,
+                   "status": s["status"], "commit": COMMIT}
+        print(n, runs[n])
+        res["beams"] = [runs[b] for b in sorted(runs)]
+        save_results(JSON, res)
+
+
+def report():
+    res = load_results(JSON)
+    done = {b["beam"]: b for b in res["beams"]}
+    lines = ["# The Stuttgart shear beams", "",
+             "Written by `benchmarks/stuttgart.py` from `stuttgart.json`. Leonhardt and Walther's beams as the Hobbs thesis models them "
+             "(Ch. 7, Tables 7.1 to 7.3): section 190 x 320 mm, d = 270 mm, two 26 mm bars, no stirrups, four-point bending, dx = 11.5 mm, "
+             "the bilinear law with k_r = 25. pdimplicit: the plane-stress scenes `options/stuttgart_beam{N}_2d.opts` (190 mm thick, both bars "
+             "on one line, fib Model Code 2010 bond slip), traced on the explicit path at a load-point speed of %.1f mm/s. P is the total "
+             "of both point loads; the experiment's is the mean where the beam was tested twice. Mode: shear where the beam lost its load "
+             "with its bars elastic, flexure where they yielded first (docs/reinforcement.md). Deflection: the load points' at the peak. "
+             "KE / W: kinetic energy over the work done, at the peak." % (1e3 * RATE), "",
+             "| beam | a_v/d | experiment P (kN), mode | Eurocode 2 P (kN), error, mode | thesis PD P (kN), error, mode | pdimplicit P (kN), error, mode "
+             "| deflection (mm) | KE / W | wall (s) | nodes | bonds | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    err = lambda p, e: "%+.0f %%" % (100 * (p / e - 1))
+    errs, modes = {"ec2": [], "thesis": [], "ours": []}, {"ec2": 0, "thesis": 0, "ours": 0}
+    for n, (avd, exps, mode, ec2, ec2m, pd, pdm) in TABLE.items():
+        e = sum(exps) / len(exps)
+        errs["ec2"].append(abs(ec2 / e - 1))
+        errs["thesis"].append(abs(pd / e - 1))
+        modes["ec2"] += ec2m == mode
+        modes["thesis"] += pdm == mode
+        r = done.get(n)
+        ours = "not run"
+        if r:
+            ours = "%.0f, %s, %s" % (r["peak_kN"], err(r["peak_kN"], e), r["mode"])
+            errs["ours"].append(abs(r["peak_kN"] / e - 1))
+            modes["ours"] += r["mode"] == mode
+        lines.append("| %d | %g | %.0f, %s | %d, %s, %s | %d, %s, %s | %s | %s | %s | %s | %s | %s | %s |" % (
+            n, avd, e, mode, ec2, err(ec2, e), ec2m, pd, err(pd, e), pdm, ours, "%.2f" % (1e3 * r["disp_at_peak_m"]) if r else "-",
+            "%.3f" % r["kinetic_over_work_at_peak"] if r else "-", r["wall_s"] if r else "-", r["nodes"] if r else "-", r["bonds"] if r else "-",
+            r["commit"] if r else "-"))
+    mean = lambda v: "%.0f %%" % (100 * sum(v) / len(v)) if v else "-"
+    lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit |", "|---|---|---|---|",
+              "| beams | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done)),
+              "| mean absolute peak error | %s | %s | %s |" % (mean(errs["ec2"]), mean(errs["thesis"]), mean(errs["ours"])),
+              "| right failure mode | %d | %d | %d |" % (modes["ec2"], modes["thesis"], modes["ours"]), ""]
+    lines += ["Command per beam: `build/pdimplicit -options_file options/stuttgart_beam{N}_2d.opts` without its `-pd_stop_fraction` line, with "
+              "the options of `stuttgart.json` (for beam 3: `%s`)." % " ".join(done[3]["options"]) if 3 in done else "", ""]
+    open(os.path.join(OUT, "stuttgart.md"), "w").write("\n".join(lines) + "\n")
+    plot(done)
+
+
+def plot(done):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6, 4))
+    avd = [TABLE[n][0] for n in TABLE]
+    ax.plot(avd, [sum(TABLE[n][1]) / len(TABLE[n][1]) for n in TABLE], "ko-", label="experiment")
+    ax.plot(avd, [TABLE[n][3] for n in TABLE], "s--", color="0.5", label="Eurocode 2")
+    ax.plot(avd, [TABLE[n][5] for n in TABLE], "^--", color="tab:blue", label="thesis PD (3D)")
+    mine = [n for n in TABLE if n in done]
+    ax.plot([TABLE[n][0] for n in mine], [done[n]["peak_kN"] for n in mine], "D-", color="tab:red", label="pdimplicit (2D, explicit)")
+    ax.set_xlabel("a_v / d")
+    ax.set_ylabel("P (kN), both point loads")
+    ax.set_yscale("log")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, "stuttgart.png"), dpi=100)
+
+
+if __name__ == "__main__":
+    if "--report" not in sys.argv[1:]:
+        measure([int(a) for a in sys.argv[1:]])
+    report()
