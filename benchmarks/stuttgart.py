@@ -27,7 +27,7 @@ TABLE = {1: (1.0, (777,), "shear", 287, "shear", 335, "shear"), 2: (1.5, (520,),
          10: (8.0, (94, 103), "flexure", 93, "flexure", 56, "flexure")}
 # load-point displacement traced (m) and the ramp's rate (m/s): the rate keeps the kinetic energy small; a
 # slender beam needs a longer travel to fail, so its ramp is longer in time
-TRAVEL = {1: 0.003, 2: 0.003, 3: 0.003, 4: 0.004, 5: 0.006, 6: 0.010, 7: 0.014, 8: 0.020, 10: 0.060}
+TRAVEL = {1: 0.006, 2: 0.006, 3: 0.006, 4: 0.008, 5: 0.010, 6: 0.015, 7: 0.020, 8: 0.025, 10: 0.060}
 RATE = 0.003 / 0.57
 
 

@@ -11,7 +11,9 @@ each support; supports and loads sit on 100 x 20 mm steel bearing plates across 
 pushed along one line of nodes at its middle (a roller or a hinge), so that the plate can turn. Each load
 point moves down by the same amount; the curve's load is one load point's reaction, half the thesis's P
 (Table 7.3 gives the total of both point loads: Eurocode 2's flexural P = 2 M_u / L_1 for beams 8 and 10).
-The bars are bonded by the fib Model Code 2010 bond-slip law with f_cm of the table (docs/reinforcement.md).
+The concrete's compressive strength is f_cm (-pd_fc: crushing, docs/softening.md; without it the lattice's
+struts and compression zones fail at a fraction of it), and the bars are bonded by the fib Model Code 2010
+bond-slip law with the same f_cm (docs/reinforcement.md).
 
 Usage: scripts/stuttgart_scenes.py [--dim 2] [--out FOLDER]   (from the repository root; FOLDER by default options/)
 """
@@ -50,10 +52,10 @@ def scene(n, dim, outdir):
             % ("3D." if dim == 3 else "2D plane stress, 190 mm thick."),
             "-pd_name " + name]
     lines = head + lines + ["-pd_dx %g" % DX, "-pd_E %g" % (ec * 1e6), "-pd_rho 2400", "-pd_law bilinear", "-pd_bilinear_kr 25",
-                            "-pd_ft %.6g" % ft, "-pd_Gf %g" % gf]
+                            "-pd_ft %.6g" % ft, "-pd_Gf %g" % gf, "-pd_fc %g" % (fcm * 1e6)]
     for k, (where, count) in enumerate(bars):
         lines += ["-pd_bar%d_line %s" % (k, where), "-pd_bar%d_diameter 0.026" % k, "-pd_bar%d_count %d" % (k, count),
-                  "-pd_bar%d_E 208e9" % k, "-pd_bar%d_fy 465e6" % k, "-pd_bar%d_bond slip" % k, "-pd_bar%d_fcm %g" % (k, fcm * 1e6)]
+                  "-pd_bar%d_E 208e9" % k, "-pd_bar%d_fy 465e6" % k, "-pd_bar%d_bond slip" % k]
     plates = [(x0, 0, PT), (x0 + L, 0, PT), (loads[0], H - PT, H), (loads[1], H - PT, H)]
     for k, (x, za, zb) in enumerate(plates):
         lines += ["-pd_plate%d_box %s" % (k, box(x - PLATE / 2, za, x + PLATE / 2, zb))]
