@@ -68,7 +68,7 @@ def scene(n, dim, outdir):
     for k, x in enumerate(loads, start=2):
         lines += ["-pd_region%d_box %s" % (k, line(x, H)), "-pd_region%d_kind displacement" % k, "-pd_region%d_dofs %s" % (k, up),
                   "-pd_region%d_displacement %s" % (k, down)]
-    lines += ["-pd_load_region 2", "-pd_steps 400", "-pd_stop_fraction 0.5"]
+    lines += ["-pd_load_region 2", "-pd_steps 400"]
     path = os.path.join(outdir, name + ".opts")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -97,18 +97,19 @@ typedef struct {
 typedef enum { ARC_LOAD = -1 } ArcPlain; /* plain control: lambda advances by a fixed increment */
 
 /* A solve with the tangent; one that fails with a preconditioner kept from an earlier tangent is made
-   again with a fresh one. */
+   again with a fresh one, and a preconditioner whose set-up failed is not kept. */
 static PetscErrorCode Solve(Arc *a, Vec b, Vec x) {
-  PetscBool again;
+  PetscBool again = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   PetscCall(KSPSolve(a->ksp, b, x));
-  if (a->direct) PetscFunctionReturn(0);
-  PetscCall(PDPCRefreshSolved(&a->refresh, a->ksp, &again));
-  if (!again) PetscFunctionReturn(0);
-  PetscCall(PDPCRefreshAssembled(&a->refresh, a->ksp));
-  PetscCall(KSPSolve(a->ksp, b, x));
-  PetscCall(PDPCRefreshSolved(&a->refresh, a->ksp, NULL));
+  if (!a->direct) PetscCall(PDPCRefreshSolved(&a->refresh, a->ksp, &again));
+  if (again) {
+    PetscCall(PDPCRefreshAssembled(&a->refresh, a->ksp));
+    PetscCall(KSPSolve(a->ksp, b, x));
+    PetscCall(PDPCRefreshSolved(&a->refresh, a->ksp, NULL));
+  }
+  PetscCall(PDPCForgetFailed(a->ksp));
   PetscFunctionReturn(0);
 }
 
@@ -473,7 +474,10 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     a->lits += n;
     a->its++;
     a->why = KSPConvergedReasons[kr];
-    if (kr < 0) PetscFunctionReturn(0);
+    if (kr < 0) {
+      if (aug) PetscCall(PDPCForgetFailed(a->aug.ksp));
+      PetscFunctionReturn(0);
+    }
     if (!aug) PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_FALSE, &dlam, &fine));
     a->why = "the constraint has no real root";
     if (!fine) PetscFunctionReturn(0);

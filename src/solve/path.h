@@ -46,3 +46,5 @@ PetscErrorCode PDPCRefreshRequest(PDPCRefresh *);
    *again (if given): the solve failed with a kept preconditioner; after PDPCRefreshAssembled it may be
    made again with a fresh one. */
 PetscErrorCode PDPCRefreshSolved(PDPCRefresh *, KSP, PetscBool *again);
+/* After a failed solve: a preconditioner whose set-up failed is reset, so that the next solve builds it anew. */
+PetscErrorCode PDPCForgetFailed(KSP);

@@ -132,3 +132,19 @@ PetscErrorCode PDPCRefreshRequest(PDPCRefresh *r) {
   if (r->snes && r->when_stale) PetscCall(SNESSetLagPreconditioner(r->snes, -2));
   PetscFunctionReturn(0);
 }
+
+/* A preconditioner whose set-up failed (a zero pivot in a factorisation) must not be kept: PETSc's MUMPS
+   interface skips every later numeric factorisation once one has failed, so the next solve stops the run
+   with an error, and a lag or an unchanged operator would apply the failed factor again. Reset, the PC is
+   built from scratch at the next solve. */
+PetscErrorCode PDPCForgetFailed(KSP ksp) {
+  KSPConvergedReason reason;
+  PC                 pc;
+
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  if (reason != KSP_DIVERGED_PC_FAILED) PetscFunctionReturn(0);
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCReset(pc));
+  PetscFunctionReturn(0);
+}

@@ -281,6 +281,11 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "interrupted"));
       break;
     }
+    if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
+      KSP ksp;
+      PetscCall(SNESGetKSP(snes, &ksp));
+      PetscCall(PDPCForgetFailed(ksp));
+    }
     if (reason == SNES_DIVERGED_LINEAR_SOLVE && refresh->when_stale && !refresh->measure) {
       /* a preconditioner kept from an earlier tangent may have lost its grip: Newton goes on from where
          it stopped with a fresh one (once; a fresh one that fails is a failure) */
