@@ -41,14 +41,19 @@ CASES = [
     ("slip_weak", "bond slip, f_t = 0.5 MPa, G_f = 10 N/m, implicit", ["-pd_bar0_bond", "slip", "-pd_bar0_fcm", "38e6", "-pd_ft", "0.5e6", "-pd_Gf", "10",
                                                                      "-pd_lambda_max", "0.25", "-pd_steps", "70", "-ksp_type", "preonly", "-pc_type",
                                                                      "cholesky"]),
+    # the bond-slip beam at half the spacing (the horizon half as deep against the section; the bar on the node line at
+    # d = 112.5 mm, the nearest to 115 mm), on the default path with its default solver
+    ("slip_dx5", "bond slip, dx = 5 mm, d = 112.5 mm, implicit (default path)", ["-pd_dx", "0.005", "-pd_bar0_line", "0,0.0375,1.3,0.0375", "-pd_bar0_bond",
+                                                                               "slip", "-pd_bar0_fcm", "38e6", "-pd_lambda_max", "0.45", "-pd_steps", "120"]),
     # 20,000 time steps as the other explicit runs: the bar nodes' mass is scaled to the concrete's stable step
     ("slip_explicit", "bond slip, explicit", ["-pd_bar0_bond", "slip", "-pd_bar0_fcm", "38e6", "-pd_mode", "explicit", "-pd_lambda_max", "0.6"]),
 ]
 
 
-def section():
-    """Cracked-section analysis of three-point bending: cracking load from f_t W, yield load from the
-    elastic cracked section (n = E_s/E_c, neutral axis k d, lever arm (1 - k/3) d)."""
+def section(d=D):
+    """Cracked-section analysis of three-point bending with the bar at depth d: cracking load from f_t W, yield
+    load from the elastic cracked section (n = E_s/E_c, neutral axis k d, lever arm (1 - k/3) d)."""
+    D = d
     rho, n = AS / (B * D), ES / EC
     k = math.sqrt(2 * rho * n + (rho * n) ** 2) - rho * n
     my = AS * FY * (1 - k / 3) * D
@@ -56,15 +61,21 @@ def section():
     return {"P_cr_N": 4 * mcr / SPAN, "P_y_N": 4 * my / SPAN, "k": k, "lever_arm_m": (1 - k / 3) * D}
 
 
-def delaminated(outdir):
-    """Length (m) of the bar's node line whose nodal damage exceeds 0.5 at the last fields written."""
+def bar_depth(extra):
+    """The bar's depth below the top face: the scene's, or that of a -pd_bar0_line among the run's options."""
+    return H - float(extra[extra.index("-pd_bar0_line") + 1].split(",")[1]) if "-pd_bar0_line" in extra else D
+
+
+def delaminated(outdir, y, dx):
+    """Length (m) of the bar's node line (at height y, nodes dx apart) whose nodal damage exceeds 0.5 at the last
+    fields written."""
     import numpy as np
     fields = last_fields(outdir)
     if fields is None:  # a run stopped at its step cap writes no fields
         return None
     x, _, d = fields
-    on = np.abs(x[:, 1] - 0.035) < 1e-9  # a bar node (bond slip) has damage 0: only the concrete counts
-    return float(np.sum(d[on] > 0.5)) * 0.01
+    on = np.abs(x[:, 1] - y) < 1e-9  # a bar node (bond slip) has damage 0: only the concrete counts
+    return float(np.sum(d[on] > 0.5)) * dx
 
 
 def measure(names):
@@ -82,12 +93,13 @@ def measure(names):
         first = next((r for r in rows if r["yielded_segments"] > 0), None)
         # the steel stress over the cracked section's at the same load, at the last row before the bar yields (or the last)
         before = [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]
-        ratio = before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * SPAN / 4 / (AS * section()["lever_arm_m"])) if before else None
+        sec = section(bar_depth(extra))
+        ratio = before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * SPAN / 4 / (AS * sec["lever_arm_m"])) if before else None
         status = open(os.path.join(out, "log")).read().strip().splitlines()[-1]
         res["runs"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "status": status,
                              "peak_N": rows[k]["load_N"], "disp_at_peak_m": rows[k]["disp_m"], "steel_stress_at_peak_Pa": rows[k]["steel_stress_Pa"],
                              "first_yield_N": first["load_N"] if first else None, "steel_over_section": ratio, "broken_bonds": int(rows[-1]["broken_bonds"]),
-                             "delaminated_m": delaminated(out), "final_disp_m": rows[-1]["disp_m"], "commit": COMMIT}
+                             "delaminated_m": delaminated(out, H - bar_depth(extra), float(extra[extra.index("-pd_dx") + 1]) if "-pd_dx" in extra else 0.01), "final_disp_m": rows[-1]["disp_m"], "P_y_N": sec["P_y_N"], "commit": COMMIT}
         print(name, res["runs"][name])
     save_results(JSON, res)
 
@@ -115,8 +127,8 @@ def report():
         r = res["runs"][name]
         ratio = r.get("steel_over_section")
         lines.append("| %s | %.0f | %.2f | %.0f | %s | %s | %s | %d | %s | %.1f | %s | %s |" % (
-            r["what"], r["peak_N"], r["peak_N"] / s["P_y_N"], r["steel_stress_at_peak_Pa"] / 1e6,
-            "%.0f" % r["first_yield_N"] if r["first_yield_N"] else "none", "%.2f" % (r["first_yield_N"] / s["P_y_N"]) if r["first_yield_N"] else "-",
+            r["what"], r["peak_N"], r["peak_N"] / r.get("P_y_N", s["P_y_N"]), r["steel_stress_at_peak_Pa"] / 1e6,
+            "%.0f" % r["first_yield_N"] if r["first_yield_N"] else "none", "%.2f" % (r["first_yield_N"] / r.get("P_y_N", s["P_y_N"])) if r["first_yield_N"] else "-",
             "%.2f" % ratio if ratio else "-", r["broken_bonds"], "%.2f" % r["delaminated_m"] if r["delaminated_m"] is not None else "-", r["cpu_s"], r.get("commit", "before 4e4abbb"),
             status(r["status"])))
     lines += ["", "Commands: `build/pdimplicit -options_file options/rc_beam_2d.opts` with the options of each run:", ""]

@@ -32,8 +32,6 @@ RATE = 0.003 / 0.57
 
 
 def measure(beams):
-    res = load_results(JSON)
-    runs = {b["beam"]: b for b in res.get("beams", [])}
     for n in TABLE:
         if beams and n not in beams:
             continue
@@ -45,12 +43,16 @@ def measure(beams):
         rows = curve_rows(out)
         s = json.load(open(os.path.join(out, "summary.json")))
         k = max(range(len(rows)), key=lambda i: rows[i]["load_N"])
-        runs[n] = {"beam": n, "peak_kN": 2 * rows[k]["load_N"] / 1e3, "mode": s["bars"]["failure_mode"], "wall_s": round(wall, 1), "cpu_s": round(cpu, 1),
+        run = {"beam": n, "peak_kN": 2 * rows[k]["load_N"] / 1e3, "mode": s["bars"]["failure_mode"], "wall_s": round(wall, 1), "cpu_s": round(cpu, 1),
                    "nodes": s["nodes"], "bonds": s["bonds"], "disp_at_peak_m": rows[k]["disp_m"], "end_load_kN": 2 * rows[-1]["load_N"] / 1e3,
                    "first_yield_kN": 2 * s["bars"]["first_yield"]["load_N"] / 1e3 if s["bars"]["first_yield"] else None,
                    "kinetic_over_work_at_peak": rows[k]["kinetic_J"] / rows[k]["external_J"], "options": extra, "exit": code,
                    "status": s["status"], "commit": COMMIT}
-        print(n, runs[n])
+        print(n, run)
+        # read again before writing: another instance may have saved other beams meanwhile
+        res = load_results(JSON)
+        runs = {b["beam"]: b for b in res.get("beams", [])}
+        runs[n] = run
         res["beams"] = [runs[b] for b in sorted(runs)]
         save_results(JSON, res)
 
@@ -65,9 +67,9 @@ def report():
              "on one line, fib Model Code 2010 bond slip), traced on the explicit path at a load-point speed of %.1f mm/s. P is the total "
              "of both point loads; the experiment's is the mean where the beam was tested twice. Mode: shear where the beam lost its load "
              "with its bars elastic, flexure where they yielded first (docs/reinforcement.md). Deflection: the load points' at the peak. "
-             "KE / W: kinetic energy over the work done, at the peak." % (1e3 * RATE), "",
+             "KE / W: kinetic energy over the work done, at the peak. CPU: the run's own; wall: with the two cores shared by other runs." % (1e3 * RATE), "",
              "| beam | a_v/d | experiment P (kN), mode | Eurocode 2 P (kN), error, mode | thesis PD P (kN), error, mode | pdimplicit P (kN), error, mode "
-             "| deflection (mm) | KE / W | wall (s) | nodes | bonds | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "| deflection (mm) | KE / W | CPU (s) | wall (s) | nodes | bonds | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     err = lambda p, e: "%+.0f %%" % (100 * (p / e - 1))
     errs, modes = {"ec2": [], "thesis": [], "ours": []}, {"ec2": 0, "thesis": 0, "ours": 0}
     for n, (avd, exps, mode, ec2, ec2m, pd, pdm) in TABLE.items():
@@ -82,9 +84,9 @@ def report():
             ours = "%.0f, %s, %s" % (r["peak_kN"], err(r["peak_kN"], e), r["mode"])
             errs["ours"].append(abs(r["peak_kN"] / e - 1))
             modes["ours"] += r["mode"] == mode
-        lines.append("| %d | %g | %.0f, %s | %d, %s, %s | %d, %s, %s | %s | %s | %s | %s | %s | %s | %s |" % (
+        lines.append("| %d | %g | %.0f, %s | %d, %s, %s | %d, %s, %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
             n, avd, e, mode, ec2, err(ec2, e), ec2m, pd, err(pd, e), pdm, ours, "%.2f" % (1e3 * r["disp_at_peak_m"]) if r else "-",
-            "%.3f" % r["kinetic_over_work_at_peak"] if r else "-", r["wall_s"] if r else "-", r["nodes"] if r else "-", r["bonds"] if r else "-",
+            "%.3f" % r["kinetic_over_work_at_peak"] if r else "-", r["cpu_s"] if r else "-", r["wall_s"] if r else "-", r["nodes"] if r else "-", r["bonds"] if r else "-",
             r["commit"] if r else "-"))
     mean = lambda v: "%.0f %%" % (100 * sum(v) / len(v)) if v else "-"
     lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit |", "|---|---|---|---|",
