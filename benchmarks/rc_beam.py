@@ -124,6 +124,8 @@ def report():
              "| run | peak (N) | peak / P_y | steel stress at the peak (MPa) | first yield (N) | first yield / P_y | steel / section | broken bonds | delaminated (m) | CPU (s) | commit | end |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for name, _, _ in CASES:
+        if name not in res["runs"]:
+            continue
         r = res["runs"][name]
         ratio = r.get("steel_over_section")
         lines.append("| %s | %.0f | %.2f | %.0f | %s | %s | %s | %d | %s | %.1f | %s | %s |" % (

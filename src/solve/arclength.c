@@ -475,7 +475,8 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     a->its++;
     a->why = KSPConvergedReasons[kr];
     if (kr < 0) {
-      if (aug) PetscCall(PDPCForgetFailed(a->aug.ksp));
+      /* the augmented solve's factor is that of the tangent's KSP, whose failure its shell PC does not pass on */
+      if (aug) PetscCall(PDPCForgetFailed(a->ksp));
       PetscFunctionReturn(0);
     }
     if (!aug) PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_FALSE, &dlam, &fine));

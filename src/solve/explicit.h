@@ -31,7 +31,9 @@ struct PDExplicit {
   PetscReal         ke_max;       /* largest kinetic energy recorded (J) */
   PetscReal         v_peak;       /* largest nodal velocity seen (m/s) */
   PetscReal         ds_peak;      /* largest stretch gained by a bond in one step, at the checks */
-  PetscReal         imbalance;    /* energy balance's error where the instability check fired */
+  PetscReal         excess;       /* energy held less the work at the last suspicious check (J) */
+  PetscInt          excess_step;  /* the step of that check */
+  PetscReal         jump;         /* growth of the excess over the work that stopped the run */
   PetscReal         w_ext;        /* external work so far (J) */
   PetscReal         w_damp;       /* kinetic energy removed by damping so far, this rank (J) */
   PetscBool         stopped;      /* the CMOD stop or the monitor ended the integration */

@@ -153,9 +153,11 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
       rec->ntrials--;
       break;
     }
-    PetscCheck(!c.blew_up, comm, PETSC_ERR_NOT_CONVERGED,
-               "Failure search: trial at %.1f N became unstable (stretch %.3g in one step); lower -pd_dt_safety", (double)T,
-               (double)c.ds_peak);
+    PetscCheck(
+        !c.blew_up, comm, PETSC_ERR_NOT_CONVERGED,
+        "Failure search: trial at %.1f N became unstable (stretch %.3g in one step, energy of %.3g of the work appeared in ten steps); "
+        "lower -pd_dt_safety",
+        (double)T, (double)c.ds_peak, (double)c.jump);
     if (!jd.verdict) {
       jd.verdict = -1;
       PetscCall(PetscSNPrintf(jd.why, sizeof jd.why, "undecided at the end of the hold (%g s)", (double)c.t_end));

@@ -136,15 +136,26 @@ PetscErrorCode PDPCRefreshRequest(PDPCRefresh *r) {
 /* A preconditioner whose set-up failed (a zero pivot in a factorisation) must not be kept: PETSc's MUMPS
    interface skips every later numeric factorisation once one has failed, so the next solve stops the run
    with an error, and a lag or an unchanged operator would apply the failed factor again. Reset, the PC is
-   built from scratch at the next solve. */
+   built from scratch at the next solve. The failure is read from the PC on every rank (a KSP's reason may
+   be set on some ranks only), and the operators, which PCReset drops, are given back. */
 PetscErrorCode PDPCForgetFailed(KSP ksp) {
-  KSPConvergedReason reason;
-  PC                 pc;
+  PC             pc;
+  PCFailedReason reason;
+  PetscInt       mine, any;
+  Mat            A, P;
 
   PetscFunctionBeginUser;
-  PetscCall(KSPGetConvergedReason(ksp, &reason));
-  if (reason != KSP_DIVERGED_PC_FAILED) PetscFunctionReturn(0);
   PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCGetFailedReasonRank(pc, &reason));
+  mine = reason != PC_NOERROR;
+  PetscCall(MPIU_Allreduce(&mine, &any, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)ksp)));
+  if (!any) PetscFunctionReturn(0);
+  PetscCall(KSPGetOperators(ksp, &A, &P));
+  PetscCall(PetscObjectReference((PetscObject)A));
+  PetscCall(PetscObjectReference((PetscObject)P));
   PetscCall(PCReset(pc));
+  PetscCall(KSPSetOperators(ksp, A, P));
+  PetscCall(MatDestroy(&A));
+  PetscCall(MatDestroy(&P));
   PetscFunctionReturn(0);
 }

@@ -281,7 +281,7 @@ static PetscErrorCode SolveIncrement(PDModel *m, SNES snes, PDPCRefresh *refresh
       PetscCall(PetscSNPrintf(res->why, sizeof res->why, "interrupted"));
       break;
     }
-    if (reason == SNES_DIVERGED_LINEAR_SOLVE) {
+    if (reason == SNES_DIVERGED_LINEAR_SOLVE || reason == SNES_DIVERGED_FNORM_NAN) {
       KSP ksp;
       PetscCall(SNESGetKSP(snes, &ksp));
       PetscCall(PDPCForgetFailed(ksp));
