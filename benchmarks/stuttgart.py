@@ -109,7 +109,7 @@ def report():
         r = done.get(n)
         ours = "not run"
         if r:
-            ours = "%.0f, %s, %s%s" % (r["peak_kN"], err(r["peak_kN"], e), r["mode"], "" if r["status"].startswith("completed") else " (%s)" % r["status"].split(":")[0])
+            ours = "%.0f, %s, %s%s" % (r["peak_kN"], err(r["peak_kN"], e), r["mode"], "" if r["status"].startswith("completed") else " (%s)" % r["status"].split()[0].rstrip(":"))
             errs["ours"].append(abs(r["peak_kN"] / e - 1))
             modes["ours"] += r["mode"] == mode
         lines.append("| %d | %g | %.0f, %s | %d, %s, %s | %d, %s, %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (
@@ -124,7 +124,7 @@ def report():
                   "%d steps, %d Newton and %d Krylov iterations in %.0f s of CPU took it to %.2f mm at the load points and P = %.0f kN with %d "
                   "broken bonds (%s; solver %s)%s." % (
                       pr["beam"], pr["limit_s"], pr["steps"], pr["newton_its"], pr["ksp_its"], pr["cpu_s"], 1e3 * pr["disp_m"], pr["P_kN"],
-                      pr["broken_bonds"], pr["status"].split(";")[0].split(":")[0], pr["solver"],
+                      pr["broken_bonds"], pr["status"].split()[0].rstrip(":"), pr["solver"],
                       ", where the explicit path peaks at %.2f mm and %.0f kN" % (1e3 * r["disp_at_peak_m"], r["peak_kN"]) if r else "")]
     lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit |", "|---|---|---|---|",
               "| beams | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done)),
