@@ -130,6 +130,7 @@ def report():
               "| beams | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done)),
               "| mean absolute peak error | %s | %s | %s |" % (mean(errs["ec2"]), mean(errs["thesis"]), mean(errs["ours"])),
               "| right failure mode | %d | %d | %d |" % (modes["ec2"], modes["thesis"], modes["ours"]), ""]
+    lines += ["![peak load against a_v/d](stuttgart.png)", ""]
     lines += ["Command per beam: `build/pdimplicit -options_file options/stuttgart_beam{N}_2d.opts` with "
               "the options of `stuttgart.json` (for beam 3: `%s`)." % " ".join(done[3]["options"]) if 3 in done else "", ""]
     open(os.path.join(OUT, "stuttgart.md"), "w").write("\n".join(lines) + "\n")

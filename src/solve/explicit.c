@@ -248,28 +248,40 @@ static PetscErrorCode AddExternalWork(PDExplicit *c, Vec u) {
   PetscFunctionReturn(0);
 }
 
-/* Energy held (stored, dissipated, kinetic, damped) less the work done (J). */
-static PetscErrorCode EnergyExcess(PDExplicit *c, Vec X, PetscReal *excess, PetscReal *scale) {
-  PDModel           *m = c->m;
-  Vec                u, v;
+/* Kinetic energy and the energy damping has removed so far (J), summed over ranks. */
+static PetscErrorCode KineticAndDamped(PDExplicit *c, Vec X, PetscReal *kinetic, PetscReal *damped) {
+  const PDModel     *m = c->m;
+  Vec                v;
   const PetscScalar *vv, *ms;
-  PetscReal          stored, dissipated, kin[2] = {0, 0}, sum[2];
+  PetscReal          mine[2] = {0, c->w_damp}, sum[2];
 
   PetscFunctionBeginUser;
   PetscCall(VecGetSubVector(X, c->is_v, &v));
   PetscCall(VecGetArrayRead(v, &vv));
   PetscCall(VecGetArrayRead(c->mass, &ms));
-  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) kin[0] += 0.5 * PetscRealPart(ms[k]) * PetscRealPart(vv[k] * vv[k]);
+  for (PetscInt k = 0; k < m->bs * m->lat->nowned; k++) mine[0] += 0.5 * PetscRealPart(ms[k]) * PetscRealPart(vv[k] * vv[k]);
   PetscCall(VecRestoreArrayRead(c->mass, &ms));
   PetscCall(VecRestoreArrayRead(v, &vv));
   PetscCall(VecRestoreSubVector(X, c->is_v, &v));
-  kin[1] = c->w_damp;
-  PetscCall(MPIU_Allreduce(kin, sum, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
+  PetscCall(MPIU_Allreduce(mine, sum, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
+  *kinetic = sum[0];
+  *damped  = sum[1];
+  PetscFunctionReturn(0);
+}
+
+/* Energy held (stored, dissipated, kinetic, damped) less the work done (J), and the larger of the two. */
+static PetscErrorCode EnergyExcess(PDExplicit *c, Vec X, PetscReal *excess, PetscReal *scale) {
+  Vec       u;
+  PetscReal stored, dissipated, kinetic, damped, held;
+
+  PetscFunctionBeginUser;
+  PetscCall(KineticAndDamped(c, X, &kinetic, &damped));
   PetscCall(VecGetSubVector(X, c->is_u, &u));
-  PetscCall(PDModelEnergy(m, u, &stored, &dissipated));
+  PetscCall(PDModelEnergy(c->m, u, &stored, &dissipated));
   PetscCall(VecRestoreSubVector(X, c->is_u, &u));
-  *excess = stored + dissipated + sum[0] + sum[1] - c->w_ext;
-  *scale  = PetscMax(PetscMax(c->w_ext, stored + dissipated + sum[0] + sum[1]), PETSC_SMALL);
+  held    = stored + dissipated + kinetic + damped;
+  *excess = held - c->w_ext;
+  *scale  = PetscMax(PetscMax(c->w_ext, held), PETSC_SMALL);
   PetscFunctionReturn(0);
 }
 
@@ -307,7 +319,7 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(TSSetConvergedReason(ts, TS_DIVERGED_NONLINEAR_SOLVE));
     PetscFunctionReturn(0);
   }
-  if (c->monitor && step % PD_CHECK_EVERY == 0) { /* before damping and rows, which reuse f_int */
+  if (c->monitor && step % PD_CHECK_EVERY == 0) { /* reads f_int, the last force evaluation's */
     PetscBool stop = PETSC_FALSE;
     PetscCall(VecGetSubVector(X, c->is_v, &v));
     PetscCall(c->monitor(c, step, t, v, &stop));
@@ -345,18 +357,13 @@ static PetscErrorCode PostStep(TS ts) {
   if (step % c->stride == 0 || t >= c->t_end - 0.5 * c->dt || c->stopped) { /* every stride steps, and the last */
     PDCurveRow     row;
     PetscLogDouble now;
-    PetscScalar    ke;
     PetscReal      lam, lam_tt;
     Ramp(c, t, &lam, &lam_tt);
     m->lambda = lam;
-    PetscCall(VecGetSubVector(X, c->is_u, &u));
-    PetscCall(VecGetSubVector(X, c->is_v, &v));
-    PetscCall(VecPointwiseMult(c->f_int, v, c->mass)); /* f_int is free between steps: m v */
-    PetscCall(VecDot(c->f_int, v, &ke));
-    c->ke_max    = PetscMax(c->ke_max, 0.5 * PetscRealPart(ke));
-    row.kinetic  = 0.5 * PetscRealPart(ke);
+    PetscCall(KineticAndDamped(c, X, &row.kinetic, &row.damped));
+    c->ke_max    = PetscMax(c->ke_max, row.kinetic);
     row.external = c->w_ext;
-    PetscCall(MPIU_Allreduce(&c->w_damp, &row.damped, 1, MPIU_REAL, MPIU_SUM, m->lat->comm));
+    PetscCall(VecGetSubVector(X, c->is_u, &u));
     PetscCall(PDModelCountDamage(m));
     PetscCall(PetscTime(&now));
     row.step         = step;
@@ -378,7 +385,6 @@ static PetscErrorCode PostStep(TS ts) {
     }
     PetscCall(PDProgress(m->lat->comm, m->scene, &row, c->stopped));
     if (c->cmod_reached || c->interrupted) PetscCall(PDFieldsWrite(m, c->rec, step, u));
-    PetscCall(VecRestoreSubVector(X, c->is_v, &v));
     PetscCall(VecRestoreSubVector(X, c->is_u, &u));
   }
   if (c->stopped) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
