@@ -70,7 +70,7 @@ typedef struct {
   Vec        fixed;                         /* 1 on constrained dofs, 0 elsewhere (global) */
   PetscBool *fixed_local;                   /* [bs*nlocal] constrained flags including ghosts */
   PetscReal *uref_local;                    /* [bs*nlocal] prescribed values at load factor 1 including ghosts */
-  Vec        load_pattern;                  /* unit direction on the load region's nodes */
+  Vec        load_pattern;                  /* unit direction on the load regions' nodes, each its own */
   Vec        disp_pattern;                  /* unit direction / count on the displacement region's nodes */
   Vec        cmod_pattern;                  /* -e on gauge point 1, +e on gauge point 2 */
   Vec        f_work;                        /* internal force for measurements (global) */

@@ -36,6 +36,7 @@ typedef enum {
   PD_OPTION_ENUM,
   PD_OPTION_STRING,
   PD_OPTION_REALS,
+  PD_OPTION_INTS,
   PD_OPTION_PREFIX
 } PDOptionType;
 
@@ -190,7 +191,9 @@ typedef struct {
   PDVoid           voids[PD_MAX_VOIDS];
   PDBar            bar[PD_MAX_BARS];
   PDVoid           nofail[PD_MAX_NOFAIL]; /* no-fail zones: the bonds of their nodes stay elastic (Ness) */
-  PetscInt         load_region;           /* region whose force or reaction is the curve's load */
+  PetscInt         load_region;           /* the first of the load regions: its kind and direction set the control */
+  PetscInt         nload_regions;         /* regions whose forces or reactions add up to the curve's load */
+  PetscInt         load_regions[PD_MAX_REGIONS];
   PetscInt         disp_region;           /* region whose mean displacement is the curve's displacement */
   PetscBool        has_cmod;
   PetscReal        cmod[6];          /* two gauge points */

@@ -68,7 +68,8 @@ def scene(n, dim, outdir):
     for k, x in enumerate(loads, start=2):
         lines += ["-pd_region%d_box %s" % (k, line(x, H)), "-pd_region%d_kind displacement" % k, "-pd_region%d_dofs %s" % (k, up),
                   "-pd_region%d_displacement %s" % (k, down)]
-    lines += ["-pd_load_region 2", "-pd_steps 400"]
+    # the curve's load is the thesis's P, both point loads; its displacement the left load point's
+    lines += ["-pd_load_region 2,3", "-pd_steps 400"]
     path = os.path.join(outdir, name + ".opts")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")

@@ -227,6 +227,20 @@ def calibration():
     check(rel(three, one) < 1e-10, "3 ranks: strain %.12e, 1 rank %.12e" % (three, one))
 
 
+def load_regions():
+    # A curve's load adds up the listed regions: the reactions of the Stuttgart beam's two load points (one
+    # solution in the elastic range, measured three ways; the beam is symmetric but for its supports), and
+    # the applied forces of two force regions (the sum of the magnitudes).
+    load = {}
+    for regions in ("2", "3", "2,3"):
+        load[regions] = run("stuttgart_beam3_2d", "-pd_steps", 1, "-pd_lambda_max", 1e-3, "-pd_load_region", regions).curve[-1]["load_N"]
+    check(rel(load["2,3"], load["2"] + load["3"]) < 1e-9 and rel(load["2"], load["3"]) < 1e-3,
+          "reactions: load points 2 and 3 together %.6f N = %.6f + %.6f N" % (load["2,3"], load["2"], load["3"]))
+    r = run("cantilever", "-pd_dx", 0.02, "-pd_region2_box", "0.5,0,0.1,0.5,0.1,0.1", "-pd_region2_kind", "force",
+            "-pd_region2_force", "0,0,-5e3", "-pd_load_region", "1,2")
+    check(rel(r.curve[-1]["load_N"], 1.5e4) < 1e-12, "forces: regions 1 and 2 together %.6f N = 10 kN + 5 kN" % r.curve[-1]["load_N"])
+
+
 if __name__ == "__main__":
     {"bond_counts": bond_counts, "bar_tension": bar_tension, "bar_2d": bar_2d, "materials": materials, "fields_index": fields_index, "cantilever": cantilever, "effects": effects, "mpi": mpi,
-     "storage_formats": storage_formats, "coarse": coarse, "calibration": calibration}[sys.argv[1]]()
+     "storage_formats": storage_formats, "coarse": coarse, "calibration": calibration, "load_regions": load_regions}[sys.argv[1]]()

@@ -85,6 +85,8 @@ def bad_values(typ, rng):
         return ["maybe"]
     elif typ.startswith("reals"):
         return ["abc", "1,nan,0"]
+    elif typ.startswith("integers"):
+        return ["abc", "1,1.5", "1,-1"]
     elif typ.startswith("`"):
         return ["bogus"]
     else:
@@ -117,6 +119,10 @@ def cases():
             (GREGOIRE, ["-pd_data_file", "/nonexistent.csv"], "-pd_data_file"),
             (GREGOIRE + ["-pd_control", "arclength"], ["-pd_restart", "/nonexistent.h5"], "-pd_restart"),
             (CANTILEVER, ["-pd_load_region", "7"], "-pd_load_region"), (CANTILEVER, ["-pd_disp_region", "-1"], "-pd_disp_region"),
+            (CANTILEVER, ["-pd_load_region", "1,1"], "-pd_load_region"),
+            # a force and a displacement region cannot add up to one load
+            (CANTILEVER + ["-pd_region2_box", "0.5,0,0.1,0.5,0.1,0.1", "-pd_region2_kind", "displacement", "-pd_region2_dofs", "z",
+                           "-pd_region2_displacement", "0,0,-1e-3"], ["-pd_load_region", "1,2"], "-pd_load_region"),
             (CANTILEVER, ["-pd_region17_box", "0,0,0,1,0.1,0.1"], "-pd_region17_box"),
             (CANTILEVER, ["-pd_materialx_E", "1e9"], "-pd_materialx_E")]
     return out

@@ -85,7 +85,7 @@ static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
   for (PetscInt i = 0; i < sc->noptions; i++) {
     const PDOptionValue *v      = &sc->options[i];
     const PetscBool      quoted = v->type == PD_OPTION_ENUM || v->type == PD_OPTION_STRING ? PETSC_TRUE : PETSC_FALSE;
-    const PetscBool      list   = v->type == PD_OPTION_REALS ? PETSC_TRUE : PETSC_FALSE;
+    const PetscBool      list   = v->type == PD_OPTION_REALS || v->type == PD_OPTION_INTS ? PETSC_TRUE : PETSC_FALSE;
     char                *name, *value = NULL;
     if (!v->value) continue;
     PetscCall(PDEscapeJSON(v->name, &name));

@@ -161,28 +161,35 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
 static PetscErrorCode SetupPatterns(PDModel *m) {
   const PDScene   *sc   = m->scene;
   const PDLattice *lat  = m->lat;
-  const PDRegion  *load = &sc->region[sc->load_region], *dreg = &sc->region[sc->disp_region];
-  const PetscInt   bs = m->bs;
-  PetscReal        dir[3], norm = 0;
+  const PDRegion  *dreg = &sc->region[sc->disp_region];
+  const PetscInt   bs   = m->bs;
+  PetscReal        dir[PD_MAX_REGIONS][3];
   PetscInt         n = 0, gn;
   PetscScalar     *lp, *dp;
 
   PetscFunctionBeginUser;
-  for (PetscInt a = 0; a < 3; a++) norm += load->vector[a] * load->vector[a];
-  norm = PetscSqrtReal(norm);
-  for (PetscInt a = 0; a < 3; a++) dir[a] = load->vector[a] / norm;
-  m->force_magnitude = norm;
+  /* the load sums the listed regions' forces or reactions, each along its own direction */
+  m->force_magnitude = 0;
+  for (PetscInt r = 0; r < sc->nload_regions; r++) {
+    const PDRegion *load = &sc->region[sc->load_regions[r]];
+    PetscReal       norm = 0;
+    for (PetscInt a = 0; a < 3; a++) norm += load->vector[a] * load->vector[a];
+    norm = PetscSqrtReal(norm);
+    for (PetscInt a = 0; a < 3; a++) dir[r][a] = load->vector[a] / norm;
+    m->force_magnitude += norm;
+  }
   PetscCall(VecGetArray(m->load_pattern, &lp));
   PetscCall(VecGetArray(m->disp_pattern, &dp));
   for (PetscInt i = 0; i < lat->nowned; i++) {
-    if (InRegion(load, lat, i, sc))
-      for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[a];
+    for (PetscInt r = 0; r < sc->nload_regions; r++)
+      if (InRegion(&sc->region[sc->load_regions[r]], lat, i, sc))
+        for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[r][a];
     if (InRegion(dreg, lat, i, sc)) n++;
   }
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt i = 0; i < lat->nowned; i++)
     if (InRegion(dreg, lat, i, sc))
-      for (PetscInt a = 0; a < bs; a++) dp[bs * i + a] = dir[a] / gn;
+      for (PetscInt a = 0; a < bs; a++) dp[bs * i + a] = dir[0][a] / gn;
   PetscCall(VecRestoreArray(m->load_pattern, &lp));
   PetscCall(VecRestoreArray(m->disp_pattern, &dp));
   if (sc->has_cmod) {

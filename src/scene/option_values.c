@@ -261,6 +261,42 @@ PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, PDScene *
   PetscFunctionReturn(0);
 }
 
+/* A list of integers, each checked against the option's range. */
+PetscErrorCode PDOptionIntArray(PetscOptionItems *PetscOptionsObject, PDScene *sc, const char *opt, PetscInt *values, PetscInt cap,
+                                PetscInt *n, PetscBool *set) {
+  const PDOptionSpec *spec;
+  PetscInt            count = 0;
+  PetscBool           def, active, flg = PETSC_FALSE;
+  char                buf[1024], shown[512] = "", item[32];
+
+  PetscFunctionBeginUser;
+  PetscCall(Begin(sc, opt, &spec, &def, &active, set));
+  if (!active) PetscFunctionReturn(0);
+  for (PetscInt i = 0; i < *n; i++) {
+    snprintf(item, sizeof item, "%s%" PetscInt_FMT, i ? "," : "", values[i]);
+    PetscCall(PetscStrlcat(shown, item, sizeof shown));
+  }
+  PetscCall(ReadText(PetscOptionsObject, opt, spec->help, shown, buf, sizeof buf, &flg));
+  if (flg) {
+    shown[0] = '\0';
+    for (char *p = buf; p;) {
+      char *comma = strchr(p, ',');
+      if (comma) *comma = '\0';
+      PetscCheck(count < cap, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: more than %" PetscInt_FMT " values given", opt, cap);
+      PetscCall(ParseInt(opt, p, &values[count]));
+      PetscCall(PDSchemaCheckRange(spec, opt, (PetscReal)values[count]));
+      snprintf(item, sizeof item, "%s%" PetscInt_FMT, count ? "," : "", values[count]);
+      PetscCall(PetscStrlcat(shown, item, sizeof shown));
+      count++;
+      p = comma ? comma + 1 : NULL;
+    }
+    *n = count;
+  }
+  PetscCall(Record(sc, spec, opt, PD_OPTION_INTS, flg, flg ? shown : NULL));
+  if (set) *set = flg;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDOptionString(PetscOptionItems *PetscOptionsObject, PDScene *sc, const char *opt, char *value, size_t len, PetscBool *set) {
   const PDOptionSpec *spec;
   PetscBool           def, active, flg = PETSC_FALSE;

@@ -11,6 +11,10 @@ PetscErrorCode PDOptionInt(PetscOptionItems *PetscOptionsObject, PDScene *, cons
 PetscErrorCode PDOptionBool(PetscOptionItems *PetscOptionsObject, PDScene *, const char *opt, PetscBool *value, PetscBool *set);
 /* *value: the index among the schema's names. */
 PetscErrorCode PDOptionEnum(PetscOptionItems *PetscOptionsObject, PDScene *, const char *opt, PetscInt *value, PetscBool *set);
+/* Reads a comma-separated list of integers into values[cap]; *n on input is the count of defaults values
+   holds, on output the count read. */
+PetscErrorCode PDOptionIntArray(PetscOptionItems *PetscOptionsObject, PDScene *, const char *opt, PetscInt *values, PetscInt cap,
+                                PetscInt *n, PetscBool *set);
 /* Reads a comma-separated list of reals; *n on input is the capacity, on output the count read. */
 PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, PDScene *, const char *opt, PetscReal *values, PetscInt *n,
                                  PetscBool *set);

@@ -106,14 +106,23 @@ static PetscErrorCode ReadLoadPath(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscInt  n      = 2 * sc->dim;
 
   PetscFunctionBeginUser;
-  sc->load_region = -1;
-  for (PetscInt k = 0; k < sc->nregions && sc->load_region < 0; k++)
-    if (sc->region[k].kind == PD_REGION_FORCE || sc->region[k].kind == PD_REGION_DISPLACEMENT) sc->load_region = k;
-  PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_load_region", &sc->load_region, NULL));
-  PetscCheck(sc->load_region >= 0 && sc->load_region < sc->nregions &&
-                 (sc->region[sc->load_region].kind == PD_REGION_FORCE || sc->region[sc->load_region].kind == PD_REGION_DISPLACEMENT),
-             comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: %" PetscInt_FMT " is not a force or displacement region",
-             sc->load_region);
+  sc->load_regions[0] = -1;
+  for (PetscInt k = 0; k < sc->nregions && sc->load_regions[0] < 0; k++)
+    if (sc->region[k].kind == PD_REGION_FORCE || sc->region[k].kind == PD_REGION_DISPLACEMENT) sc->load_regions[0] = k;
+  sc->nload_regions = 1;
+  PetscCall(PDOptionIntArray(PetscOptionsObject, sc, "-pd_load_region", sc->load_regions, PD_MAX_REGIONS, &sc->nload_regions, NULL));
+  for (PetscInt i = 0; i < sc->nload_regions; i++) {
+    const PetscInt r = sc->load_regions[i];
+    PetscCheck(r >= 0 && r < sc->nregions && (sc->region[r].kind == PD_REGION_FORCE || sc->region[r].kind == PD_REGION_DISPLACEMENT), comm,
+               PETSC_ERR_USER_INPUT, "Option -pd_load_region: %" PetscInt_FMT " is not a force or displacement region", r);
+    /* one kind: a curve adds applied forces or reactions, not one to the other */
+    PetscCheck(sc->region[r].kind == sc->region[sc->load_regions[0]].kind, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_load_region: region %" PetscInt_FMT " is a %s region, region %" PetscInt_FMT " a %s one; list regions of one kind", r,
+               PDRegionKinds[sc->region[r].kind], sc->load_regions[0], PDRegionKinds[sc->region[sc->load_regions[0]].kind]);
+    for (PetscInt j = 0; j < i; j++)
+      PetscCheck(sc->load_regions[j] != r, comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: region %" PetscInt_FMT " is listed twice", r);
+  }
+  sc->load_region = sc->load_regions[0];
   sc->disp_region = sc->load_region;
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_disp_region", &sc->disp_region, NULL));
   PetscCheck(sc->disp_region >= 0 && sc->disp_region < sc->nregions, comm, PETSC_ERR_USER_INPUT,

@@ -413,9 +413,11 @@ const PDOptionSpec PDOptionSchema[] = {
      .help   = "Density of the plate (the explicit path's mass)"},
     /* load path and curve */
     {.name     = "-pd_load_region",
-     .type     = PD_OPTION_INT,
+     .type     = PD_OPTION_INTS,
+     .range    = "[0, inf)",
      .def_note = "first loaded region",
-     .help     = "Region whose applied force, or reaction along its displacement, is the curve's load"},
+     .help     = "Regions whose applied forces, or reactions along their displacements, add up to the curve's load (all of one kind; "
+                 "the first sets the control's direction)"},
     {.name     = "-pd_disp_region",
      .type     = PD_OPTION_INT,
      .def_note = "the load region",
