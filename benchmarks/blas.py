@@ -19,7 +19,7 @@ SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 ELASTIC = ["-pd_law", "elastic", "-pd_region2_displacement", "0,0,-5e-5", "-pd_steps", "1", "-pd_stop_cmod", "0"]
 OPENBLAS = "/usr/lib/x86_64-linux-gnu/openblas-serial"
 SOLVERS = [
-    ("CG + bjacobi/ICC(0), SBAIJ (default)", [], ["netlib"]),
+    ("CG + bjacobi/ICC(0), SBAIJ", ["-pc_type", "bjacobi"], ["netlib"]),
     ("MUMPS Cholesky, SBAIJ", ["-ksp_type", "preonly", "-pc_type", "cholesky", "-pc_factor_mat_solver_type", "mumps"], ["netlib", "openblas"]),
     ("CHOLMOD Cholesky, AIJ", ["-ksp_type", "preonly", "-pd_mat_type", "aij", "-pc_type", "cholesky", "-pc_factor_mat_solver_type", "cholmod"],
      ["netlib", "openblas"]),

@@ -4,7 +4,7 @@
 Times set-up (lattice, bonds, model), assembly and solve at dx = 10, 5, 2.5, 1.25 mm with several
 Krylov and direct solvers, records iteration counts and peak memory, and writes
 docs/benchmarks/elastic.md and docs/benchmarks/elastic.png. Takes about half an hour on 2 cores.
-Usage: benchmarks/elastic.py [--quick]
+Usage: benchmarks/elastic.py [--quick] [--report] [--solvers 'NAME;NAME']   (--solvers: run these again, keep the other rows)
 """
 import json
 import os
@@ -25,7 +25,8 @@ TIMEOUT = 900
 
 # name, ranks, options, largest dx fine enough to try (direct solvers stop early: fill-in)
 SOLVERS = [
-    ("CG + bjacobi/ICC(0), SBAIJ (default)", 2, [], 0),
+    ("CG + Jacobi, SBAIJ (default)", 2, [], 0),
+    ("CG + bjacobi/ICC(0), SBAIJ", 2, ["-pc_type", "bjacobi"], 0),
     ("CG + bjacobi/ICC(0), BAIJ", 2, ["-pd_mat_type", "baij"], 0),
     ("CG + GAMG, AIJ", 2, ["-pc_type", "gamg"], 0),
     ("CG + hypre BoomerAMG, AIJ", 2, ["-pd_mat_type", "aij", "-pc_type", "hypre"], 0),
@@ -56,9 +57,14 @@ def run_one(dx, ranks, opts):
 def main():
     quick = "--quick" in sys.argv
     spacings = SPACINGS[:2] if quick else SPACINGS
+    only = sys.argv[sys.argv.index("--solvers") + 1].split(";") if "--solvers" in sys.argv else None
+    kept = json.load(open(os.path.join(RESULTS_DIR, "elastic.json"))) if only else []
     rows = []
     for dx in spacings:
         for name, ranks, opts, finest in SOLVERS:
+            if only and name not in only:
+                rows += [r for r in kept if r["dx"] == dx and r["solver"] == name]
+                continue
             if finest and dx < finest:
                 rows.append({"dx": dx, "solver": name, "status": "skipped (fill-in: see below)"})
                 continue

@@ -19,7 +19,14 @@ and the bond history (summary.json's history_bytes), the Krylov basis (GMRES res
 vectors, as allocated: 64 vectors of the dofs, an upper bound) and the rest (the preconditioner, PETSc's
 and MPI's own).
 
-Writes docs/benchmarks/scaling.json and scaling.md (about an hour).
+A second growth series reaches the 1.8 million nodes the model must grow to: the elastic cantilever
+(options/cantilever.opts) from dx = 13.5 mm (3,920 nodes) to dx = 1/550 m (1,796,850 nodes, 105 million
+bonds), one linear solve each (the scene is linear: a Newton iteration is that solve), CG with point Jacobi
+(-pc_type jacobi): the block ICC(0) factor of the default doubles the matrix's memory and would not leave
+the largest case room in 24 GB. Its times are CPU times (wait4), since the series shared the machine with
+other runs.
+
+Writes docs/benchmarks/scaling.json and scaling.md (about two hours).
 
 Usage: benchmarks/scaling.py [--report | CASE ...]   (CASE: run only these, keep the others' results)
 """
@@ -55,6 +62,11 @@ CASES = [
     ("d400_dx5_whole", scene(400), ["-pd_pc_reach", "0"], 1),
 ]
 PC_REACH = ("d400_dx5_near", "d400_dx5_whole")
+# the elastic growth series (key, dx)
+CANTILEVER = [("cantilever_dx13.5", "0.0135"), ("cantilever_dx10", "0.01"), ("cantilever_dx5", "0.005"), ("cantilever_dx2.5", "0.0025"),
+              ("cantilever_dx1.82", repr(1 / 550))]
+CASES += [(k, os.path.join(ROOT, "options", "cantilever.opts"), ["-pd_dx", dx, "-pc_type", "jacobi"], 1) for k, dx in CANTILEVER]
+SERIES = tuple(k for k, _ in CANTILEVER)
 
 
 def measure(only):
@@ -64,17 +76,20 @@ def measure(only):
         if only and key not in only:
             continue
         out = tempfile.mkdtemp(prefix="pdscaling_")
-        cmd = [EXE, "-options_file", path, "-pd_output_dir", out] + FIRST_INCREMENT + opts
+        first = [] if key in SERIES else FIRST_INCREMENT  # the cantilever: its one linear step
+        cmd = [EXE, "-options_file", path, "-pd_output_dir", out] + first + opts
         if ranks > 1:
             cmd = ["mpiexec", "-n", str(ranks)] + cmd
         with open(os.path.join(out, "log"), "w") as log:
             rc, wall, cpu, _ = run_timed(cmd, 7200, log)
         s = json.load(open(os.path.join(out, "summary.json")))
         res["runs"][key] = {
-            "command": " ".join(["build/pdimplicit", "-options_file", os.path.relpath(path, ROOT)] + FIRST_INCREMENT + opts),
+            "command": " ".join(["build/pdimplicit", "-options_file", os.path.relpath(path, ROOT)] + first + opts),
             "ranks": ranks, "returncode": rc, "wall_s": wall, "cpu_s": cpu, "nodes": s["nodes"], "bonds": s["bonds"], "dofs": s["dofs"],
             "solver": s["solver"], "newton_its": s["newton_its"], "ksp_its": s["ksp_its"], "timings": s["timings"],
-            "memory": s["memory"], "status": s["status"]}
+            "memory": s["memory"], "status": s["status"], "key": key}
+        if key in SERIES:
+            res["runs"][key]["tip_m"] = float(open(os.path.join(out, "curve.csv")).read().strip().splitlines()[-1].split(",")[3])
         print(key, res["runs"][key])
         save_results(JSON, res)
 
@@ -101,7 +116,7 @@ def breakdown(r):
 
 def report():
     runs = load_results(JSON)["runs"]
-    one = [runs[k] for k, _, _, ranks in CASES if ranks == 1 and k in runs and k not in PC_REACH]
+    one = [runs[k] for k, _, _, ranks in CASES if ranks == 1 and k in runs and k not in PC_REACH + SERIES]
     per_newton = lambda r: r["timings"]["solve"] / r["newton_its"]
     per_ksp = lambda r: r["timings"]["solve"] / max(1, r["ksp_its"])
     gamg = [r for r in one if "gamg" in r["solver"]]
@@ -116,7 +131,7 @@ def report():
              "| case | nodes | bonds | solver | Newton | KSP | solve (s) | per Newton iteration (s) | per Krylov iteration (ms) | "
              "peak memory (MB) | bytes per bond |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for k, _, _, ranks in CASES:
-        if ranks != 1 or k not in runs or k in PC_REACH:
+        if ranks != 1 or k not in runs or k in PC_REACH + SERIES:
             continue
         r = runs[k]
         lines.append("| %s | %s | %s | %s | %d | %d | %.2f | %.3f | %.1f | %.0f | %.0f |" % (
@@ -131,6 +146,24 @@ def report():
                   "on one rank, if it fitted in memory (below)." % (
                       len(gamg), format(min(r["nodes"] for r in gamg), ","), format(max(r["nodes"] for r in gamg), ","), p, pk,
                       format(int(big), ","), c * big**p)]
+    series = [runs[k] for k in SERIES if k in runs and runs[k]["status"].startswith("completed")]
+    if series:
+        lines += ["", "## The elastic cantilever to 1.8 million nodes (one rank, CG with point Jacobi)", "",
+                  "One linear solve per case (a linear scene's Newton iteration). CPU: the run's own (set-up, assembly, solve); "
+                  "the solve's wall time is from `summary.json` and grew when other runs shared the cores.", "",
+                  "| case | nodes | bonds | CG iterations | CPU (s) | solve, wall (s) | CPU per Krylov iteration (ms) | peak memory (MB) | bytes per bond | tip deflection (mm) |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        for r in series:
+            lines.append("| %s | %s | %s | %d | %.1f | %.1f | %.2f | %.0f | %.0f | %.4f |" % (
+                r["key"], format(r["nodes"], ","), format(r["bonds"], ","), r["ksp_its"], r["cpu_s"], r["timings"]["solve"],
+                1e3 * r["cpu_s"] / r["ksp_its"], r["memory"]["peak_rss_bytes"] / 2**20, r["memory"]["peak_rss_bytes"] / r["bonds"], 1e3 * r["tip_m"]))
+        if len(series) >= 3:
+            p, _ = fit([r["nodes"] for r in series], [r["cpu_s"] for r in series])
+            pk, _ = fit([r["nodes"] for r in series], [r["cpu_s"] / r["ksp_its"] for r in series])
+            pi, _ = fit([r["nodes"] for r in series], [r["ksp_its"] for r in series])
+            lines += ["", "Fitted over %s to %s nodes: CPU time per Newton iteration (the solve and what builds it) ~ N^%.2f, per "
+                      "Krylov iteration ~ N^%.2f, Krylov iterations ~ N^%.2f (point Jacobi's grow with the lattice's size, as "
+                      "1/dx for a fixed beam)." % (format(min(r["nodes"] for r in series), ","), format(max(r["nodes"] for r in series), ","), p, pk, pi)]
     lines += ["", "## What the memory is made of (bytes per bond, one rank)", "",
               "The matrix from its non-zeros (8-byte values; 4-byte column indices, one per value on AIJ, one per 3 x 3 block on SBAIJ); bond arrays 36 bytes per bond (ends, constant, "
               "material, surface-correction factor, incidence); the tangent's bond scalar 8 (small kinematics: its geometric part "
@@ -139,7 +172,7 @@ def report():
               "is the preconditioner (the GAMG hierarchy, or the ICC factor) and what PETSc and MPI hold.", "",
               "| case | peak | matrix | bond arrays | tangent scalars | history | Krylov basis | rest |", "|---|---|---|---|---|---|---|---|"]
     for k, _, _, ranks in CASES:
-        if ranks != 1 or k not in runs or k in PC_REACH:
+        if ranks != 1 or k not in runs or k in PC_REACH + SERIES:
             continue
         total, parts = breakdown(runs[k])
         lines.append("| %s | %.0f | %s |" % (k, total, " | ".join("%.0f" % parts[p] for p in

@@ -12,7 +12,7 @@
    from about a thousand nodes and draws even below (docs/benchmarks/solve_profile.md, row "block
    ICC(0)"). Smaller models, whose runs take seconds either way, keep ICC(0). Other non-linear models
    (steel bars in elastic concrete, whose contrast of stiffnesses GAMG's aggregation handles worse) switch
-   at PD_GAMG_MIN_NODES. Linear 3D models keep ICC(0) on SBAIJ: one solve, half the memory. */
+   at PD_GAMG_MIN_NODES. Linear 3D models keep SBAIJ with point Jacobi (PDSolverConfigureKSP): one solve, half the memory. */
 #define PD_GAMG_MIN_NODES 10000
 #define PD_GAMG_MIN_NODES_SOFTENING 2000
 

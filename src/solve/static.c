@@ -18,18 +18,20 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PC pc;
 
   PetscFunctionBeginUser;
-  /* CG + block Jacobi with ICC(0) blocks on SBAIJ storage: measured fastest on small 3D PD stiffnesses
-     (docs/benchmarks/elastic.md); direct factorisations suffer from the fill-in of a 3D horizon. GAMG
-     takes over on 2D and large models (below). The consistent tangent of a softening
-     bond is indefinite: CG and MINRES (which needs a positive preconditioner) break down on it with
-     ICC, GMRES does not. */
+  /* Non-linear 3D models: block Jacobi with ICC(0) blocks on SBAIJ storage, measured fastest on small
+     3D PD stiffnesses; GAMG takes over on 2D and large models (below). Linear 3D models: CG with point
+     Jacobi, which needs more iterations than ICC(0) but no triangular solves and no factor, so that one
+     solve costs less and half the memory (docs/solvers.md, docs/benchmarks/elastic.md); their matrix is
+     assembled once, so ICC(0)'s cheap set-up does not count. Direct factorisations suffer from the
+     fill-in of a 3D horizon. The consistent tangent of a softening bond is indefinite: CG and MINRES
+     (which needs a positive preconditioner) break down on it with ICC, GMRES does not. */
   PetscCall(KSPSetType(ksp, (m->softening && m->scene->tangent == PD_TANGENT_CONSISTENT) ? KSPGMRES : KSPCG));
   PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
   PetscCall(KSPGetPC(ksp, &pc));
   /* 2D models and large 3D ones: algebraic multigrid with the rigid-body near-null space; ICC(0) loses
      its grip on long beams (2D half-notched D = 200 mm under path following: 291,232 KSP iterations and
      138 s with ICC, 20,942 and 30 s with GAMG; PDModelDefaultsToGAMG) */
-  PetscCall(PCSetType(pc, PDModelDefaultsToGAMG(m) ? PCGAMG : PCBJACOBI));
+  PetscCall(PCSetType(pc, PDModelDefaultsToGAMG(m) ? PCGAMG : m->linear ? PCJACOBI : PCBJACOBI));
   /* a Krylov solve of a softening model that needs thousands of iterations has stalled (the half-notched beam's
      need a few dozen): give up early, so that the increment is cut or the preconditioner changed
      (SwitchToGAMG) within seconds rather than minutes */
