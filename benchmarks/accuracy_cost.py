@@ -22,7 +22,7 @@ import os
 import subprocess
 import tempfile
 
-from common import EXE, RESULTS_DIR, OUT, ROOT, experiment as experiment_rows, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, experiment as experiment_rows, load_results, run_timed, store_result, pyplot, save_figure, write_lines
 
 RESULTS = os.path.join(RESULTS_DIR, "accuracy_cost.json")
 PI = "3.141592653589793"
@@ -218,15 +218,12 @@ def report(res):
                       if k.startswith("cantilever/") and k.endswith("/m=%s/implicit" % m) and "curve" in r), reverse=True)
         if pts:
             lines.append("- m = %s: %s." % (m.replace("3.142", "pi"), ", ".join("%+.2f %% at %g mm" % (100 * e, 1e3 * dx) for dx, e in pts)))
-    with open(os.path.join(OUT, "accuracy_cost.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_lines("accuracy_cost.md", lines)
     plot(res)
 
 
 def plot(res):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
     for ax, scene, what in zip(axes, ("cantilever", "gregoire_d50_hn", "gregoire_d50_un"),
                                ("cantilever: tip deflection error vs Timoshenko", "half-notched: curve difference to the finest implicit run",
@@ -254,8 +251,7 @@ def plot(res):
         ax.grid(alpha=0.3, which="both")
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=6)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "accuracy_cost.png"), dpi=110)
+    save_figure(fig, "accuracy_cost.png", dpi=110)
 
 
 def main():

@@ -33,7 +33,7 @@ import tempfile
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import EXE, GREGOIRE_DATA, OUT, RESULTS_DIR, ROOT, experiment_peaks, last_fields, load_results, run_timed, store_result  # noqa: E402
+from common import EXE, GREGOIRE_DATA, OUT, RESULTS_DIR, ROOT, experiment_peaks, last_fields, load_results, run_timed, store_result, pyplot, save_figure  # noqa: E402
 
 DATA = os.path.join(RESULTS_DIR, "calibration.json")
 RATIOS = {"3": 3.0, "pi": math.pi, "4": 4.0}
@@ -187,9 +187,7 @@ def report(res):
     with open(os.path.join(OUT, "calibration.md"), "w") as f:
         f.write("\n".join(lines))
     try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
     except ImportError:
         return
     def error(scene, dx, r):
@@ -213,8 +211,7 @@ def report(res):
         ax.grid(True, which="both", lw=0.3)
     axes[0].set_ylabel("|error| (%)")
     axes[1].legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "calibration.png"), dpi=100)
+    save_figure(fig, "calibration.png", dpi=100)
 
 
 def main():

@@ -107,3 +107,23 @@ def curve_difference(a, b):
     cb, lb = np.array(b["curve"]).T
     c = np.linspace(0, min(ca.max(), cb.max()), 400)
     return float(np.sqrt(np.mean((np.interp(c, ca, la) - np.interp(c, cb, lb)) ** 2)) / la.max())
+
+
+def pyplot():
+    """matplotlib's pyplot on its file-only backend: the reports write PNG files and open no window."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    return plt
+
+
+def save_figure(fig, name, dpi=100):
+    """Lays the figure out and writes it beside the report (OUT)."""
+    fig.tight_layout()
+    fig.savefig(os.path.join(OUT, name), dpi=dpi)
+
+
+def write_lines(name, lines):
+    """Writes a report's lines beside the others (OUT)."""
+    with open(os.path.join(OUT, name), "w") as f:
+        f.write("\n".join(lines) + "\n")

@@ -14,7 +14,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, last_fields, load_results, run_timed, save_results
+from common import EXE, OUT, RESULTS_DIR, ROOT, last_fields, load_results, run_timed, save_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "compression.json")
 PRISM = os.path.join(ROOT, "options", "prism_compression_2d.opts")
@@ -147,7 +147,7 @@ def report():
                   b0["peak_N"], b1["peak_N"], abs(b1["peak_N"] / b0["peak_N"] - 1), b0["steps"], b1["steps"], b0["newton_its"], b1["newton_its"]),
               "", "Commands:", ""]
     lines += ["    build/pdimplicit -options_file %s %s" % (os.path.relpath(c[2], ROOT), " ".join(c[3])) for c in CASES]
-    open(os.path.join(OUT, "compression.md"), "w").write("\n".join(lines) + "\n")
+    write_lines("compression.md", lines)
 
 
 if __name__ == "__main__":

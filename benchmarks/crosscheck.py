@@ -22,7 +22,7 @@ import subprocess
 import sys
 import time
 
-from common import curve_rows, ENV, EXE, OUT, RESULTS_DIR, ROOT, load_results, save_results
+from common import curve_rows, ENV, EXE, OUT, RESULTS_DIR, ROOT, load_results, save_results, pyplot, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "crosscheck.json")
 # the recorded cases, in the order of the report, with what each shows
@@ -148,15 +148,13 @@ def report():
             continue
         c = res["cases"][key]
         lines += ["", "## %s" % what, "", "`%s`" % c["command"], ""] + table(c)
-    open(os.path.join(OUT, "crosscheck.md"), "w").write("\n".join(lines) + "\n")
+    write_lines("crosscheck.md", lines)
 
 
 def plot(name, imp, exp, c, out):
     unit = "mm CMOD" if c["abscissa"] == "cmod_m" else "mm displacement"
     try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
         fig, ax = plt.subplots(figsize=(6, 4))
         for r, lab in ((imp, "implicit"), (exp, "explicit")):
             ax.plot([1e3 * x[c["abscissa"]] for x in r["rows"]], [x["load_N"] for x in r["rows"]], label=lab)

@@ -13,7 +13,7 @@ import sys
 import tempfile
 import time
 
-from common import RESULTS_DIR, ENV, EXE, OUT, ROOT
+from common import RESULTS_DIR, ENV, EXE, OUT, ROOT, pyplot, save_figure, write_lines
 
 SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
 # the scene's elastic response, one linear solve for a 50 um deflection; partial volumes in the surface
@@ -78,9 +78,7 @@ def main():
 
 
 def write_report(rows):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     lines = ["# Elastic solve benchmark", "",
              "Gregoire D = 50 mm half-notched beam, elastic, one load step under displacement control; "
@@ -97,7 +95,7 @@ def write_report(rows):
         lines.append("| %g | %d | %d | %s | %.2f | %.2f | %.2f | %d | %.0f | %.0f | %.1f | ok |" % (
             r["dx"] * 1e3, s["nodes"], s["bonds"], r["solver"], t["setup"], t["assembly"], t["solve"], s["ksp_its"],
             rss / 2 ** 20, rss / s["bonds"], s["bonds"] / (t["setup"] * r["ranks"]) / 1e6))
-    open(os.path.join(OUT, "elastic_table.md"), "w").write("\n".join(lines) + "\n")  # pasted into elastic.md
+    write_lines("elastic_table.md", lines)  # pasted into elastic.md
 
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.2))
     for name in dict.fromkeys(r["solver"] for r in rows):
@@ -115,8 +113,7 @@ def write_report(rows):
     ax[0].legend(fontsize=7)
     for a in ax:
         a.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "elastic.png"), dpi=110)
+    save_figure(fig, "elastic.png", dpi=110)
 
 
 if __name__ == "__main__":

@@ -22,7 +22,7 @@ import json
 import os
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, curve_difference, load_results, run_timed, store_result
+from common import EXE, OUT, RESULTS_DIR, ROOT, curve_difference, load_results, run_timed, store_result, pyplot, save_figure
 import size_effect
 
 JSON = os.path.join(RESULTS_DIR, "explicit_beam.json")
@@ -64,9 +64,7 @@ def study(D, kind, dx, ranks, timeout):
 
 
 def report(res):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     lines = ["# Implicit against explicit on the 3D Gregoire beams", "",
              "Written by `benchmarks/explicit_beam.py` from `explicit_beam.json`. Each beam's default path-following run",
              "(IMPL-EX, damage error %g per step) and its explicit run, one after the other in one invocation, on the same ranks," % IMPLEX,
@@ -96,8 +94,7 @@ def report(res):
     ax.set_xlabel("CMOD (mm)")
     ax.set_ylabel("load (kN)")
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "explicit_beam.png"), dpi=100)
+    save_figure(fig, "explicit_beam.png", dpi=100)
     lines += ["![load against CMOD](explicit_beam.png)", ""]
     open(os.path.join(OUT, "explicit_beam.md"), "w").write("\n".join(lines))
 

@@ -16,7 +16,7 @@ import json
 import os
 import tempfile
 
-from common import EXE, GREGOIRE_DATA, RESULTS_DIR, OUT, ROOT, experiment, experiment_peaks, load_results, run_timed, store_result
+from common import EXE, GREGOIRE_DATA, RESULTS_DIR, OUT, ROOT, experiment, experiment_peaks, load_results, run_timed, store_result, pyplot, save_figure, write_lines
 
 RESULTS = os.path.join(RESULTS_DIR, "gregoire.json")
 
@@ -103,15 +103,12 @@ def report(res):
                   "|---|---|---|---|---|---|---|---|---|---|"]
         lines += [row(k[len(beam) + 1:], res[k], beam) for k in ks]
         lines.append("")
-    with open(os.path.join(OUT, "gregoire.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_lines("gregoire.md", lines)
     plot(res)
 
 
 def plot(res):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
     for ax, beam in zip(axes, BEAMS):
         if beam in DATA:
@@ -132,8 +129,7 @@ def plot(res):
         ax.grid(alpha=0.3)
         if ax.get_legend_handles_labels()[0]:
             ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "gregoire.png"), dpi=110)
+    save_figure(fig, "gregoire.png", dpi=110)
 
 
 def main():

@@ -26,7 +26,7 @@ import tempfile
 
 import numpy as np
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, experiment_peaks, load_results, run_timed, save_results
+from common import EXE, OUT, RESULTS_DIR, ROOT, experiment_peaks, load_results, run_timed, save_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "halfnotched.json")
 
@@ -217,7 +217,7 @@ def report():
                   exp["hn"][0] / exp["un"][0], min(ratios), max(ratios), " and ".join("%.3f" % v for v in pd) or "-")]
     lines += ["", "Commands (`benchmarks/halfnotched.py NAME` reruns one):", ""]
     lines += [("    build/pdimplicit -options_file options/gregoire_d50_%s.opts %s" % (beam, " ".join(extra))).rstrip() for _, beam, _, extra in CASES]
-    open(os.path.join(OUT, "halfnotched.md"), "w").write("\n".join(lines) + "\n")
+    write_lines("halfnotched.md", lines)
 
 
 if __name__ == "__main__":

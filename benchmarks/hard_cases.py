@@ -13,7 +13,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results
+from common import EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, pyplot, save_figure
 
 JSON = os.path.join(RESULTS_DIR, "hard_cases.json")
 
@@ -85,9 +85,7 @@ def report(res):
     with open(os.path.join(OUT, "hard_cases.md"), "w") as fo:
         fo.write("\n".join(lines))
     try:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        plt = pyplot()
     except ImportError:
         return
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.8))
@@ -110,8 +108,7 @@ def report(res):
         ax.set_xlabel(xlabel)
         ax.set_ylabel("load (kN)")
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "hard_cases.png"), dpi=110)
+    save_figure(fig, "hard_cases.png", dpi=110)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,7 @@ import os
 import sys
 import tempfile
 
-from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results, pyplot, save_figure, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "pullout.json")
 SCENE = os.path.join(ROOT, "options", "pullout.opts")
@@ -59,10 +59,8 @@ def report():
         f = at(c, s)
         lines.append("| %.1f | %.0f | %.0f | %.4f |" % (1e3 * s, f, law_force(s), f / law_force(s)))
     lines += ["", "![force against slip](pullout.png)", "", "Command: `build/pdimplicit -options_file options/pullout.opts`"]
-    open(os.path.join(OUT, "pullout.md"), "w").write("\n".join(lines) + "\n")
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    write_lines("pullout.md", lines)
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     xs = [1e-5 * i for i in range(1, 601)]
     ax.plot([1e3 * x for x in xs], [law_force(x) / 1e3 for x in xs], "k--", label="tau(s) pi d L (fib MC2010)")
@@ -70,8 +68,7 @@ def report():
     ax.set_xlabel("slip of the loaded end (mm)")
     ax.set_ylabel("pull-out force (kN)")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "pullout.png"), dpi=100)
+    save_figure(fig, "pullout.png", dpi=100)
 
 
 if __name__ == "__main__":

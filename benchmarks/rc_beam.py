@@ -14,7 +14,7 @@ import subprocess
 import sys
 import tempfile
 
-from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "rc_beam.json")
 # the commit each run was measured at (runs can be measured apart: CASE arguments)
@@ -135,7 +135,7 @@ def report():
             status(r["status"])))
     lines += ["", "Commands: `build/pdimplicit -options_file options/rc_beam_2d.opts` with the options of each run:", ""]
     lines += ["    %s" % " ".join(c[2]) for c in CASES]
-    open(os.path.join(OUT, "rc_beam.md"), "w").write("\n".join(lines) + "\n")
+    write_lines("rc_beam.md", lines)
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results
+from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "scaling.json")
 FIRST_INCREMENT = ["-pd_steps", "1", "-pd_lambda_max", "0.0025"]
@@ -204,7 +204,7 @@ def report():
                 r["memory"]["peak_rss_bytes"] / 2**20, total, parts["matrix"], parts["rest"]))
     lines += ["", "Commands:", ""] + ["    %s%s" % ("mpiexec -n 2 " if runs[k]["ranks"] > 1 else "", runs[k]["command"])
                                        for k, _, _, _ in CASES if k in runs]
-    open(os.path.join(OUT, "scaling.md"), "w").write("\n".join(lines) + "\n")
+    write_lines("scaling.md", lines)
 
 
 if __name__ == "__main__":

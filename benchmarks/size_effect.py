@@ -26,7 +26,7 @@ import re
 import sys
 import tempfile
 
-from common import EXE, RESULTS_DIR, OUT, ROOT, load_results, run_timed, store_result
+from common import EXE, RESULTS_DIR, OUT, ROOT, load_results, run_timed, store_result, pyplot, save_figure, write_lines
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import gregoire_scenes  # noqa: E402 (scripts/ is a folder of scripts, not a package)
@@ -178,9 +178,7 @@ def nominal_strength(D, P):
 
 
 def report(res):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     import matplotlib.ticker
     keys = sorted(res, key=lambda k: (-parse_key(k)[3], parse_key(k)[2], parse_key(k)[0], list(KINDS).index(parse_key(k)[1])))
     lines = ["# Size effect: Gregoire beams D = 50 to 400 mm under path following", "",
@@ -225,8 +223,7 @@ def report(res):
         fit = "%.2f | %.0f" % (a ** -0.5, a / b) if a > 0 and b > 0 else "- | -"
         ratios = ", ".join("%.2f" % (q[1] / p[1]) for p, q in zip(pts, pts[1:]) if q[0] == 2 * p[0])
         lines.append("| %s, %s | %s | %s | %s |" % (KINDS[kind], how, ", ".join(str(p[0]) for p in pts), fit, ratios))
-    with open(os.path.join(OUT, "size_effect_table.md"), "w") as f:
-        f.write("\n".join(lines) + "\n")
+    write_lines("size_effect_table.md", lines)
     # one colour per size (curves) or notch ratio (strengths), one line style per way of computing
     size_colour = {50: "C0", 100: "C1", 200: "C2", 400: "C3"}
     kind_colour = {"un": "C0", "fn": "C1", "hn": "C2"}
@@ -252,8 +249,7 @@ def report(res):
     ax[3].set_xticks([50, 100, 200, 400])
     ax[3].set_yticks([1, 2, 3, 4, 6, 8])
     ax[3].legend(fontsize=6.5, loc="upper left", bbox_to_anchor=(1.02, 1))
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "size_effect.png"), dpi=110)
+    save_figure(fig, "size_effect.png", dpi=110)
 
 
 def main():

@@ -18,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 
-from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, load_results
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, load_results, pyplot, save_figure, write_lines
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from stuttgart_scenes import BEAMS  # noqa: E402
@@ -148,14 +148,12 @@ def report():
     lines += ["![peak load against a_v/d](stuttgart.png)", ""]
     lines += ["Command per beam: `build/pdimplicit -options_file options/stuttgart_beam{N}_2d.opts` with "
               "the options of `stuttgart.json` (for beam 3: `%s`)." % " ".join(done[3]["options"]) if 3 in done else "", ""]
-    open(os.path.join(OUT, "stuttgart.md"), "w").write("\n".join(lines) + "\n")
+    write_lines("stuttgart.md", lines)
     plot(done)
 
 
 def plot(done):
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
     fig, ax = plt.subplots(figsize=(6, 4))
     avd = [AVD[n] for n in TABLE]
     ax.plot(avd, [sum(TABLE[n][0]) / len(TABLE[n][0]) for n in TABLE], "ko-", label="experiment")
@@ -167,8 +165,7 @@ def plot(done):
     ax.set_ylabel("P (kN), both point loads")
     ax.set_yscale("log")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "stuttgart.png"), dpi=100)
+    save_figure(fig, "stuttgart.png", dpi=100)
 
 
 if __name__ == "__main__":
