@@ -22,7 +22,7 @@ import os
 import subprocess
 import tempfile
 
-from common import EXE, RESULTS_DIR, OUT, ROOT, experiment as experiment_rows, load_results, run_timed, store_result, pyplot, save_figure, write_lines
+from common import EXE, RESULTS_DIR, ROOT, experiment as experiment_rows, load_results, run_timed, store_result, pyplot, save_figure, write_lines
 
 RESULTS = os.path.join(RESULTS_DIR, "accuracy_cost.json")
 PI = "3.141592653589793"

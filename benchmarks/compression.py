@@ -14,7 +14,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, last_fields, load_results, run_timed, save_results, write_lines
+from common import EXE, RESULTS_DIR, ROOT, last_fields, load_results, run_timed, save_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "compression.json")
 PRISM = os.path.join(ROOT, "options", "prism_compression_2d.opts")

@@ -22,7 +22,7 @@ import subprocess
 import sys
 import time
 
-from common import curve_rows, ENV, EXE, OUT, RESULTS_DIR, ROOT, load_results, save_results, pyplot, write_lines
+from common import curve_rows, ENV, EXE, RESULTS_DIR, ROOT, load_results, save_results, pyplot, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "crosscheck.json")
 # the recorded cases, in the order of the report, with what each shows

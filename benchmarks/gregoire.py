@@ -16,7 +16,7 @@ import json
 import os
 import tempfile
 
-from common import EXE, GREGOIRE_DATA, RESULTS_DIR, OUT, ROOT, experiment, experiment_peaks, load_results, run_timed, store_result, pyplot, save_figure, write_lines
+from common import EXE, GREGOIRE_DATA, RESULTS_DIR, ROOT, experiment, experiment_peaks, load_results, run_timed, store_result, pyplot, save_figure, write_lines
 
 RESULTS = os.path.join(RESULTS_DIR, "gregoire.json")
 

@@ -26,7 +26,7 @@ import tempfile
 
 import numpy as np
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, experiment_peaks, load_results, run_timed, save_results, write_lines
+from common import EXE, RESULTS_DIR, ROOT, experiment_peaks, load_results, run_timed, save_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "halfnotched.json")
 

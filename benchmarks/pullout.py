@@ -11,7 +11,7 @@ import os
 import sys
 import tempfile
 
-from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results, pyplot, save_figure, write_lines
+from common import curve_rows, EXE, RESULTS_DIR, ROOT, load_results, run_timed, save_results, pyplot, save_figure, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "pullout.json")
 SCENE = os.path.join(ROOT, "options", "pullout.opts")

@@ -14,7 +14,7 @@ import subprocess
 import sys
 import tempfile
 
-from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results, write_lines
+from common import curve_rows, EXE, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "rc_beam.json")
 # the commit each run was measured at (runs can be measured apart: CASE arguments)

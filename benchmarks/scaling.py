@@ -36,7 +36,7 @@ import os
 import sys
 import tempfile
 
-from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, save_results, write_lines
+from common import EXE, RESULTS_DIR, ROOT, load_results, run_timed, save_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "scaling.json")
 FIRST_INCREMENT = ["-pd_steps", "1", "-pd_lambda_max", "0.0025"]

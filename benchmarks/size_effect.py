@@ -26,7 +26,7 @@ import re
 import sys
 import tempfile
 
-from common import EXE, RESULTS_DIR, OUT, ROOT, load_results, run_timed, store_result, pyplot, save_figure, write_lines
+from common import EXE, RESULTS_DIR, ROOT, load_results, run_timed, store_result, pyplot, save_figure, write_lines
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 import gregoire_scenes  # noqa: E402 (scripts/ is a folder of scripts, not a package)

@@ -18,7 +18,7 @@ import subprocess
 import sys
 import tempfile
 
-from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, run_timed, save_results, load_results, pyplot, save_figure, write_lines
+from common import curve_rows, EXE, RESULTS_DIR, ROOT, run_timed, save_results, load_results, pyplot, save_figure, write_lines
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from stuttgart_scenes import BEAMS  # noqa: E402
