@@ -160,10 +160,15 @@ def headline(res, scene, dx):
         return None
     ri, re_ = res[ki], res[ke]
     d = curve_error(re_["curve"], [(x[0], x[1]) for x in ri["curve"] if x[0] <= 2e-4])
+    dp = re_["peak"] / ri["peak"] - 1
+    # equal accuracy: peak within 1 % and curves within 1 % RMS of the peak, as the ramp was chosen on the
+    # half-notched beam (explicit_ramp.py allows a little more where the explicit path's slowest ramp differs)
+    equal = abs(dp) <= 0.01 and d <= 0.0125
     return ("- %s, dx = %g mm: explicit %.1f s of CPU (%d time steps), implicit %.1f s (%s Newton, %s Krylov iterations): "
-            "the explicit run takes %.2f times the implicit one; peaks %.1f and %.1f N (%+.2f %%), curves %.2f %% RMS of the peak apart." % (
+            "the explicit run takes %.2f times the implicit one; peaks %.1f and %.1f N (%+.2f %%), curves %.2f %% RMS of the peak apart%s." % (
                 scene.replace("gregoire_d50_", "Gregoire "), 1e3 * dx, re_["cpu"], re_["time_steps"], ri["cpu"], ri["newton"], ri["ksp"],
-                re_["cpu"] / ri["cpu"], re_["peak"], ri["peak"], 100 * (re_["peak"] / ri["peak"] - 1), 100 * d))
+                re_["cpu"] / ri["cpu"], re_["peak"], ri["peak"], 100 * dp, 100 * d,
+                "" if equal else " (not equal accuracy: the ramp tuned on the half-notched beam is too fast for this one, so the ratio understates what an equally accurate explicit run costs)"))
 
 
 def report(res):
