@@ -21,7 +21,7 @@ not of beam theory.
 Results go to docs/benchmarks/calibration.json, one entry per run, kept between invocations; the table
 docs/benchmarks/calibration.md and the plot calibration.png are written from it.
 
-Usage: benchmarks/calibration.py [--dx 0.02 0.01 0.005 0.0025] [--calibration continuum stencil] [--ranks 2]
+Usage: benchmarks/calibration.py [--dx 0.02 0.01 0.005 0.0025] [--calibration continuum stencil] [--ratios 3 pi 4] [--ranks 2]
        [--softening --beams un fn hn] [--fe] [--report]
 """
 import argparse
@@ -219,6 +219,7 @@ def main():
     ap.add_argument("--dx", type=float, nargs="+", default=[0.02, 0.01, 0.005, 0.0025])
     ap.add_argument("--calibration", nargs="+", default=["continuum", "stencil"])
     ap.add_argument("--scenes", nargs="+", default=list(SCENES))
+    ap.add_argument("--ratios", nargs="+", default=list(RATIOS), choices=list(RATIOS), help="horizon ratios of the elastic scenes")
     ap.add_argument("--ranks", type=int, default=2, help="ranks for dx below 5 mm")
     ap.add_argument("--softening", action="store_true", help="the D = 50 mm beams instead of the elastic scenes")
     ap.add_argument("--beams", nargs="+", default=list(BEAMS))
@@ -250,7 +251,7 @@ def main():
     elif not a.report:
         for scene in a.scenes:
             for dx in a.dx:
-                for m in RATIOS:
+                for m in a.ratios:
                     for cal in a.calibration:
                         r = measure(scene, dx, m, cal, a.ranks if dx < 0.005 else 1)
                         print(key(scene, dx, m, cal), r, flush=True)
