@@ -51,8 +51,8 @@ def run_one(dx, ranks, opts):
     if p.returncode != 0:
         return {"status": "failed: " + (p.stderr.strip().splitlines() or ["?"])[-1][:80]}
     s = json.load(open(os.path.join(out, "summary.json")))
-    # CPU time of every rank (/usr/bin/time counts mpiexec's children): unlike the wall times, not inflated
-    # when other work shares the cores
+    # CPU time of mpiexec and every rank (/usr/bin/time counts mpiexec's children; mpiexec's own is a
+    # fraction of a second): unlike the wall times, not inflated when other work shares the cores
     cpu = sum(float(l.split(":")[1]) for l in p.stderr.splitlines() if l.strip().startswith(("User time", "System time")))
     return {"status": "ok", "wall": wall, "cpu": cpu, "summary": s}
 
@@ -60,10 +60,13 @@ def run_one(dx, ranks, opts):
 def main():
     quick = "--quick" in sys.argv
     spacings = SPACINGS[:2] if quick else SPACINGS
-    only = sys.argv[sys.argv.index("--solvers") + 1].split(";") if "--solvers" in sys.argv else None
+    only = sys.argv[sys.argv.index("--solvers") + 1].split(";") if "--solvers" in sys.argv[:-1] else None
     kept = json.load(open(os.path.join(RESULTS_DIR, "elastic.json"))) if only else []
     rows = []
-    for dx in spacings:
+    for dx in SPACINGS if only else spacings:
+        if dx not in spacings:  # a spacing --quick leaves out keeps its rows
+            rows += [r for r in kept if r["dx"] == dx]
+            continue
         for name, ranks, opts, finest in SOLVERS:
             if only and name not in only:
                 rows += [r for r in kept if r["dx"] == dx and r["solver"] == name]

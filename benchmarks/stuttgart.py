@@ -106,7 +106,7 @@ def report():
              "P is the total of both point loads, the sum of their reactions; rows marked * were run before the curve could sum two "
              "regions and took twice the left one's (the beam and its loads are symmetric, but where one shear span fails first the two "
              "reactions part after the peak). The experiment's P is the mean where the beam was tested twice. "
-             "Mode, from the left point's curve: shear where the beam lost its load with its bars elastic, flexure where they yielded "
+             "Mode, from the curve (the sum of both points, or in the rows marked * the left point's alone): shear where the beam lost its load with its bars elastic, flexure where they yielded "
              "first, none where the curve did not end 10 %% below its peak (docs/reinforcement.md); a run that did not complete says how "
              "it ended. Deflection: the load points' at the peak. "
              "KE / W: kinetic energy over the work done, at the peak. CPU: the run's own; wall: with the two cores shared by other runs." % (1e3 * RATE), "",

@@ -194,7 +194,7 @@ typedef struct {
   PetscInt         load_region;           /* the first of the load regions: its kind and direction set the control */
   PetscInt         nload_regions;         /* regions whose forces or reactions add up to the curve's load */
   PetscInt         load_regions[PD_MAX_REGIONS];
-  PetscInt         disp_region;           /* region whose mean displacement is the curve's displacement */
+  PetscInt         disp_region; /* region whose mean displacement is the curve's displacement */
   PetscBool        has_cmod;
   PetscReal        cmod[6];          /* two gauge points */
   PetscInt         steps;            /* load steps */

@@ -168,7 +168,9 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   PetscScalar     *lp, *dp;
 
   PetscFunctionBeginUser;
-  /* the load sums the listed regions' forces or reactions, each along its own direction */
+  /* the load sums the listed regions' forces or reactions, each along its own direction; where two regions
+     share a node they constrain different components of it (a component in two regions is bad input), so
+     their directions add */
   m->force_magnitude = 0;
   for (PetscInt r = 0; r < sc->nload_regions; r++) {
     const PDRegion *load = &sc->region[sc->load_regions[r]];
@@ -183,7 +185,7 @@ static PetscErrorCode SetupPatterns(PDModel *m) {
   for (PetscInt i = 0; i < lat->nowned; i++) {
     for (PetscInt r = 0; r < sc->nload_regions; r++)
       if (InRegion(&sc->region[sc->load_regions[r]], lat, i, sc))
-        for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] = dir[r][a];
+        for (PetscInt a = 0; a < bs; a++) lp[bs * i + a] += dir[r][a];
     if (InRegion(dreg, lat, i, sc)) n++;
   }
   PetscCall(MPIU_Allreduce(&n, &gn, 1, MPIU_INT, MPI_SUM, lat->comm));

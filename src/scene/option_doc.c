@@ -6,8 +6,8 @@
 
 static void TypeText(const PDOptionSpec *s, PetscBool markdown, char *buf, size_t len) {
   static const char *const names[] = {
-      [PD_OPTION_REAL] = "real",   [PD_OPTION_INT] = "integer",         [PD_OPTION_BOOL] = "true/false",
-      [PD_OPTION_STRING] = "text", [PD_OPTION_REALS] = "reals x,y,...", [PD_OPTION_INTS] = "integers i,j,...",
+      [PD_OPTION_REAL] = "real",           [PD_OPTION_INT] = "integer",         [PD_OPTION_BOOL] = "true/false",
+      [PD_OPTION_STRING] = "text",         [PD_OPTION_REALS] = "reals x,y,...", [PD_OPTION_INTS] = "integers i,j,...",
       [PD_OPTION_PREFIX] = "PETSc options"};
   const char *q = markdown ? "`" : "";
   size_t      n;

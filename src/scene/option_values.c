@@ -292,7 +292,7 @@ PetscErrorCode PDOptionIntArray(PetscOptionItems *PetscOptionsObject, PDScene *s
     }
     *n = count;
   }
-  PetscCall(Record(sc, spec, opt, PD_OPTION_INTS, flg, flg ? shown : NULL));
+  PetscCall(Record(sc, spec, opt, PD_OPTION_INTS, flg, shown)); /* the default too, as the other readers echo theirs */
   if (set) *set = flg;
   PetscFunctionReturn(0);
 }

@@ -117,10 +117,12 @@ static PetscErrorCode ReadLoadPath(PetscOptionItems *PetscOptionsObject, MPI_Com
                PETSC_ERR_USER_INPUT, "Option -pd_load_region: %" PetscInt_FMT " is not a force or displacement region", r);
     /* one kind: a curve adds applied forces or reactions, not one to the other */
     PetscCheck(sc->region[r].kind == sc->region[sc->load_regions[0]].kind, comm, PETSC_ERR_USER_INPUT,
-               "Option -pd_load_region: region %" PetscInt_FMT " is a %s region, region %" PetscInt_FMT " a %s one; list regions of one kind", r,
-               PDRegionKinds[sc->region[r].kind], sc->load_regions[0], PDRegionKinds[sc->region[sc->load_regions[0]].kind]);
+               "Option -pd_load_region: region %" PetscInt_FMT " is a %s region, region %" PetscInt_FMT
+               " a %s one; list regions of one kind",
+               r, PDRegionKinds[sc->region[r].kind], sc->load_regions[0], PDRegionKinds[sc->region[sc->load_regions[0]].kind]);
     for (PetscInt j = 0; j < i; j++)
-      PetscCheck(sc->load_regions[j] != r, comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: region %" PetscInt_FMT " is listed twice", r);
+      PetscCheck(sc->load_regions[j] != r, comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: region %" PetscInt_FMT " is listed twice",
+                 r);
   }
   sc->load_region = sc->load_regions[0];
   sc->disp_region = sc->load_region;
