@@ -190,11 +190,10 @@ typedef struct {
   PDRegion         region[PD_MAX_REGIONS];
   PDVoid           voids[PD_MAX_VOIDS];
   PDBar            bar[PD_MAX_BARS];
-  PDVoid           nofail[PD_MAX_NOFAIL]; /* no-fail zones: the bonds of their nodes stay elastic (Ness) */
-  PetscInt         load_region;           /* the first of the load regions: its kind and direction set the control */
-  PetscInt         nload_regions;         /* regions whose forces or reactions add up to the curve's load */
-  PetscInt         load_regions[PD_MAX_REGIONS];
-  PetscInt         disp_region; /* region whose mean displacement is the curve's displacement */
+  PDVoid           nofail[PD_MAX_NOFAIL];        /* no-fail zones: the bonds of their nodes stay elastic (Ness) */
+  PetscInt         nload_regions;                /* regions whose forces or reactions add up to the curve's load */
+  PetscInt         load_regions[PD_MAX_REGIONS]; /* the first's kind and direction set the control */
+  PetscInt         disp_region;                  /* region whose mean displacement is the curve's displacement */
   PetscBool        has_cmod;
   PetscReal        cmod[6];          /* two gauge points */
   PetscInt         steps;            /* load steps */

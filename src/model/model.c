@@ -625,7 +625,7 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
 
   PetscFunctionBeginUser;
   PetscCall(PDModelInternalForce(m, u, m->f_work));
-  if (m->scene->region[m->scene->load_region].kind == PD_REGION_FORCE)
+  if (m->scene->region[m->scene->load_regions[0]].kind == PD_REGION_FORCE)
     *load = m->lambda * m->force_magnitude;
   else {
     PetscCall(VecDot(m->f_work, m->load_pattern, &v));

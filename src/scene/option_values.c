@@ -232,6 +232,14 @@ static PetscErrorCode RealsText(const PetscReal *values, PetscInt n, char *buf, 
   PetscFunctionReturn(0);
 }
 
+/* The next item of a comma-separated list, cut off in place; *rest moves past it (NULL after the last). */
+static char *NextItem(char **rest) {
+  char *item = *rest, *comma = strchr(item, ',');
+  if (comma) *comma = '\0';
+  *rest = comma ? comma + 1 : NULL;
+  return item;
+}
+
 PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, PDScene *sc, const char *opt, PetscReal *values, PetscInt *n,
                                  PetscBool *set) {
   const PDOptionSpec *spec;
@@ -245,13 +253,9 @@ PetscErrorCode PDOptionRealArray(PetscOptionItems *PetscOptionsObject, PDScene *
   PetscCall(RealsText(values, cap, shown, sizeof shown));
   PetscCall(ReadText(PetscOptionsObject, opt, spec->help, shown, buf, sizeof buf, &flg));
   if (flg) {
-    for (char *p = buf; p;) {
-      char *comma = strchr(p, ',');
-      if (comma) *comma = '\0';
+    for (char *rest = buf; rest;) {
       PetscCheck(count < cap, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: more than %" PetscInt_FMT " values given", opt, cap);
-      PetscCall(ParseReal(opt, p, &values[count]));
-      count++;
-      p = comma ? comma + 1 : NULL;
+      PetscCall(ParseReal(opt, NextItem(&rest), &values[count++]));
     }
     *n = count;
     PetscCall(RealsText(values, count, shown, sizeof shown));
@@ -279,16 +283,13 @@ PetscErrorCode PDOptionIntArray(PetscOptionItems *PetscOptionsObject, PDScene *s
   PetscCall(ReadText(PetscOptionsObject, opt, spec->help, shown, buf, sizeof buf, &flg));
   if (flg) {
     shown[0] = '\0';
-    for (char *p = buf; p;) {
-      char *comma = strchr(p, ',');
-      if (comma) *comma = '\0';
+    for (char *rest = buf; rest;) {
       PetscCheck(count < cap, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s: more than %" PetscInt_FMT " values given", opt, cap);
-      PetscCall(ParseInt(opt, p, &values[count]));
+      PetscCall(ParseInt(opt, NextItem(&rest), &values[count]));
       PetscCall(PDSchemaCheckRange(spec, opt, (PetscReal)values[count]));
       snprintf(item, sizeof item, "%s%" PetscInt_FMT, count ? "," : "", values[count]);
       PetscCall(PetscStrlcat(shown, item, sizeof shown));
       count++;
-      p = comma ? comma + 1 : NULL;
     }
     *n = count;
   }

@@ -124,8 +124,7 @@ static PetscErrorCode ReadLoadPath(PetscOptionItems *PetscOptionsObject, MPI_Com
       PetscCheck(sc->load_regions[j] != r, comm, PETSC_ERR_USER_INPUT, "Option -pd_load_region: region %" PetscInt_FMT " is listed twice",
                  r);
   }
-  sc->load_region = sc->load_regions[0];
-  sc->disp_region = sc->load_region;
+  sc->disp_region = sc->load_regions[0];
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_disp_region", &sc->disp_region, NULL));
   PetscCheck(sc->disp_region >= 0 && sc->disp_region < sc->nregions, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_disp_region: %" PetscInt_FMT " is not a region", sc->disp_region);

@@ -40,7 +40,7 @@ static PetscErrorCode ReadPathFollowing(PetscOptionItems *PetscOptionsObject, MP
 }
 
 static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
-  const PDRegion *load = &sc->region[sc->load_region];
+  const PDRegion *load = &sc->region[sc->load_regions[0]]; /* the first sets the control */
   PetscInt        v = load->kind == PD_REGION_FORCE ? PD_CONTROL_FORCE : PD_CONTROL_DISPLACEMENT, t = 0;
   PetscBool       set;
 
@@ -121,7 +121,7 @@ static PetscErrorCode ReadExplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
 /* Failure search options (Ness 2019 Sec. 3.5, 4.3). Tolerances are relative where the seed's are absolute
    (its velocity tolerance is in m/s), so that one default serves beams of any size and load. */
 static PetscErrorCode ReadFailureSearch(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
-  const PDRegion *load = &sc->region[sc->load_region];
+  const PDRegion *load = &sc->region[sc->load_regions[0]]; /* the first sets the control */
   PetscInt        crit = PD_FAILURE_DAMAGE, n = 2;
   PetscBool       set;
 
