@@ -45,6 +45,9 @@ def load_factor(summary):
     return 1 if len(summary["options"]["-pd_load_region"]) == 2 else 2
 
 
+P_FROM = {1: "both load points", 2: "twice the left load point's"}  # a run's record of where its P came from
+
+
 def measure(beams):
     for n in beams or [b for b in TABLE if b not in NOT_BY_DEFAULT]:
         out = tempfile.mkdtemp(prefix="pdbench_")
@@ -62,7 +65,7 @@ def measure(beams):
         run = {"beam": n, "peak_kN": f * rows[k]["load_N"] / 1e3, "mode": s["bars"]["failure_mode"], "wall_s": round(wall, 1), "cpu_s": round(cpu, 1),
                    "nodes": s["nodes"], "bonds": s["bonds"], "disp_at_peak_m": rows[k]["disp_m"], "end_load_kN": f * rows[-1]["load_N"] / 1e3,
                    "first_yield_kN": f * s["bars"]["first_yield"]["load_N"] / 1e3 if s["bars"]["first_yield"] else None,
-                   "P_from": "both load points" if f == 1 else "twice the left load point's",
+                   "P_from": P_FROM[f],
                    "kinetic_over_work_at_peak": rows[k]["kinetic_J"] / max(rows[k]["external_J"], 1e-30), "options": extra, "exit": code,
                    "status": s["status"], "commit": COMMIT}
         print(n, run)
@@ -87,7 +90,7 @@ def probe_implicit(n=3, limit=600):
     probe = {"beam": n, "limit_s": limit, "cpu_s": round(cpu, 1), "wall_s": round(wall, 1), "exit": code, "status": s["status"],
              "solver": s["solver"], "steps": rows[-1]["step"], "newton_its": s["newton_its"], "ksp_its": s["ksp_its"],
              "disp_m": rows[-1]["disp_m"], "P_kN": load_factor(s) * rows[-1]["load_N"] / 1e3, "broken_bonds": rows[-1]["broken_bonds"], "commit": COMMIT,
-             "P_from": "both load points" if load_factor(s) == 1 else "twice the left load point's"}
+             "P_from": P_FROM[load_factor(s)]}
     print("implicit", probe)
     res = load_results(JSON)
     res["implicit_probe"] = probe
@@ -124,7 +127,7 @@ def report():
         r = done.get(n)
         ours = "not run"
         if r:
-            ours = "%.0f%s, %s, %s%s" % (r["peak_kN"], "" if r.get("P_from") == "both load points" else "*", err(r["peak_kN"], e), r["mode"],
+            ours = "%.0f%s, %s, %s%s" % (r["peak_kN"], "" if r.get("P_from") == P_FROM[1] else "*", err(r["peak_kN"], e), r["mode"],
                                          "" if r["status"].startswith("completed") else " (%s)" % r["status"].split()[0].rstrip(":"))
             errs["ours"].append(abs(r["peak_kN"] / e - 1))
             modes["ours"] += r["mode"] == mode
@@ -140,7 +143,7 @@ def report():
                   "%d steps, %d Newton and %d Krylov iterations in %.0f s of CPU took it to %.2f mm at the load points and P = %.0f kN%s with %d "
                   "broken bonds (%s; solver %s)%s." % (
                       pr["beam"], pr["limit_s"], pr["steps"], pr["newton_its"], pr["ksp_its"], pr["cpu_s"], 1e3 * pr["disp_m"], pr["P_kN"],
-                      "" if pr.get("P_from") == "both load points" else " (twice the left point's)", pr["broken_bonds"], pr["status"].split()[0].rstrip(":"), pr["solver"],
+                      "" if pr.get("P_from") == P_FROM[1] else " (twice the left point's)", pr["broken_bonds"], pr["status"].split()[0].rstrip(":"), pr["solver"],
                       ", where the explicit path peaks at %.2f mm and %.0f kN" % (1e3 * r["disp_at_peak_m"], r["peak_kN"]) if r else "")]
     lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit |", "|---|---|---|---|",
               "| beams | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done)),
