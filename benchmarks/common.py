@@ -99,6 +99,16 @@ def experiment_peaks(beam):
     return tuple(1e3 * max(r[c] for r in rows) for c in (1, 2, 3))
 
 
+def plot_gregoire_experiment(ax, beam, mean=True):
+    """Draws a Gregoire beam's experimental envelope (and its mean curve) on ax, in mm and N, where data/ has it."""
+    if beam not in GREGOIRE_DATA:
+        return
+    d = experiment(GREGOIRE_DATA[beam])
+    ax.fill_between([x[0] for x in d], [1e3 * x[2] for x in d], [1e3 * x[3] for x in d], color="0.85", label="experiment min-max")
+    if mean:
+        ax.plot([x[0] for x in d], [1e3 * x[1] for x in d], color="0.5", lw=1, label="experiment mean")
+
+
 def curve_difference(a, b):
     """RMS load difference of run b against run a (dicts with a 'curve' of [CMOD, load] rows) over the CMOD
     range both reach, over a's peak."""

@@ -16,7 +16,7 @@ import json
 import os
 import tempfile
 
-from common import EXE, GREGOIRE_DATA, RESULTS_DIR, ROOT, experiment, experiment_peaks, load_results, run_timed, store_result, pyplot, save_figure, write_lines
+from common import EXE, RESULTS_DIR, ROOT, experiment_peaks, load_results, plot_gregoire_experiment, run_timed, store_result, pyplot, save_figure, write_lines
 
 RESULTS = os.path.join(RESULTS_DIR, "gregoire.json")
 
@@ -24,7 +24,6 @@ BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
 LAWS = ["linear", "bilinear", "trilinear", "nonlinear"]
 SPACINGS = [5e-3, 2.5e-3]
 # experimental mean peak and min-max (N), Gregoire et al. (2013) as digitised in data/ (FN: thesis Fig. 5.9)
-DATA = GREGOIRE_DATA
 EXPERIMENT = {beam: experiment_peaks(beam) for beam in BEAMS}
 # Hobbs thesis, non-linear law, dx = 5 mm, explicit: with / without the critical-stretch correction (Sec. 5.5.5)
 THESIS = {"un": (4748, 5336), "fn": (3097, 3320), "hn": (1280, 1362)}
@@ -111,10 +110,7 @@ def plot(res):
     plt = pyplot()
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
     for ax, beam in zip(axes, BEAMS):
-        if beam in DATA:
-            d = experiment(DATA[beam])
-            ax.fill_between([x[0] for x in d], [1e3 * x[2] for x in d], [1e3 * x[3] for x in d], color="0.85", label="experiment min-max")
-            ax.plot([x[0] for x in d], [1e3 * x[1] for x in d], color="0.5", lw=1, label="experiment mean")
+        plot_gregoire_experiment(ax, beam)
         for k in sorted(res):
             r = res[k]
             if not k.startswith(beam + "/") or "curve" not in r or not k.endswith("/default"):

@@ -15,7 +15,8 @@ REPORTS = {"accuracy_cost.py": ["accuracy_cost.md"], "gregoire.py": ["gregoire.m
            "rc_beam.py": ["rc_beam.md"], "pullout.py": ["pullout.md"], "calibration.py": ["calibration.md"],
            "halfnotched.py": ["halfnotched.md"], "pc_refresh.py": ["pc_refresh.md"],
            "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"],
-           "partition.py": ["partition.md"], "scaling.py": ["scaling.md"], "stuttgart.py": ["stuttgart.md"]}
+           "partition.py": ["partition.md"], "scaling.py": ["scaling.md"], "stuttgart.py": ["stuttgart.md"],
+           "softening_convergence.py": ["softening_convergence.md"]}
 
 
 def main():
