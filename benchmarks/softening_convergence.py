@@ -13,11 +13,18 @@ over the experimental envelopes, and the peaks against dx.
 Results go to docs/benchmarks/softening_convergence.json, one entry per run, kept between invocations (an
 interrupted study resumes where it stopped); softening_convergence.md and .png are written from it.
 
-Usage: benchmarks/softening_convergence.py [--dx 0.005 0.0025 0.00125] [--beams un fn hn] [--timeout 7200]
-       [--report]
+With --variants, the unnotched beam at dx = 10, 5 and 2.5 mm with one ingredient of its scene changed at a
+time (the surface correction, its critical-stretch part, its family volume, a scatter of bond strength): which
+of them drives its peak's rise under refinement.
+
+With --fixed-horizon, the beams at dx = 2.5 mm with the horizon of the shipped dx = 5 mm scene (m = 2 pi).
+
+Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants] [--fixed-horizon]
+       [--timeout 7200] [--report]
 """
 import argparse
 import json
+import math
 import os
 import sys
 import tempfile
@@ -29,11 +36,17 @@ from common import (EXE, RESULTS_DIR, ROOT, curve_difference, curve_rows, experi
 DATA = os.path.join(RESULTS_DIR, "softening_convergence.json")
 BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
 SPACINGS = [0.01, 0.005, 0.0025, 0.00125]
+# one ingredient of the unnotched beam's scene changed at a time (run with --variants, up to dx = 2.5 mm)
+VARIANTS = {"critical-stretch correction off": ["-pd_sc_correction", "false"], "surface correction off": ["-pd_surface_correction", "false"],
+            "partial volumes in the surface correction": ["-pd_sc_whole_cells", "false"], "5 % bond-strength scatter": ["-pd_strength_scatter", "0.05"]}
+VARIANT_SPACINGS = [0.01, 0.005, 0.0025]
+# the horizon held at the shipped dx = 5 mm scene's (pi x 5 mm) while dx halves: m-refinement instead of delta-refinement
+FIXED_HORIZON = ["-pd_horizon_ratio", repr(2 * math.pi)]
 DAMAGED = 0.1  # nodal damage above which a node counts in the damaged zone
 
 
-def key(beam, dx):
-    return "%s dx=%g" % (beam, dx)
+def key(beam, dx, extra=()):
+    return " ".join(["%s dx=%g" % (beam, dx)] + list(extra))
 
 
 def damaged_zone(outdir):
@@ -56,9 +69,9 @@ def damaged_zone(outdir):
     return {"root": spans[0] if spans else 0.0, "median": float(np.median(spans)) if spans else 0.0}
 
 
-def measure(beam, dx, timeout):
+def measure(beam, dx, timeout, extra=()):
     out = tempfile.mkdtemp(prefix="pdconv_")
-    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_output_dir", out, "-pd_dx", repr(dx)]
+    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_output_dir", out, "-pd_dx", repr(dx), *extra]
     with open(os.path.join(out, "log.txt"), "w") as log:
         code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
     s = json.load(open(os.path.join(out, "summary.json")))
@@ -67,11 +80,11 @@ def measure(beam, dx, timeout):
     return {"status": s["status"], "converged": s["converged"], "timed_out": timed_out, "returncode": code, "peak_N": max(c[1] for c in curve),
             "final_cmod_m": curve[-1][0], "nodes": s["nodes"], "bonds": s["bonds"], "steps": s["steps"], "newton_its": s["newton_its"],
             "ksp_its": s["ksp_its"], "wall_s": wall, "cpu_s": cpu, "peak_rss_bytes": s["memory"]["peak_rss_bytes"], "solver": s["solver"],
-            "damaged_zone_m": damaged_zone(out), "horizon_m": s["dx_m"] * s["horizon_ratio"], "curve": curve, "command": " ".join(["pdimplicit"] + cmd[1:3] + ["-pd_dx", repr(dx)])}
+            "damaged_zone_m": damaged_zone(out), "horizon_m": s["dx_m"] * s["horizon_ratio"], "curve": curve, "command": " ".join(["pdimplicit", "-options_file", os.path.relpath(cmd[2], ROOT)] + cmd[5:])}
 
 
-def spacings(res, beam):
-    return sorted((float(k.split("dx=")[1]) for k in res if k.startswith(beam + " ")), reverse=True)
+def spacings(res, beam, extra=()):
+    return [dx for dx in SPACINGS if key(beam, dx, extra) in res]
 
 
 def report(res):
@@ -106,8 +119,36 @@ def report(res):
     lines += ["", "Between the two finest spacings:", "", "| beam | spacings (mm) | peak change | curves apart |", "|---|---|---|---|"]
     lines += ["| %s | %g to %g | %+.1f %% | %.1f %% |" % s for s in summary]
     lines.append("")
+    variants_report(res, lines)
     write_lines("softening_convergence.md", lines)
     plot(res)
+
+
+def variants_report(res, lines):
+    """What moves the unnotched beam's peak under refinement: its scene with one ingredient changed."""
+    rows = [(name, extra) for name, extra in [("shipped scene", [])] + list(VARIANTS.items()) if spacings(res, "un", extra)]
+    if len(rows) < 2:
+        return
+    lines += ["## The unnotched beam with one ingredient changed", "",
+              "Peak (N) by spacing, and its change between the two finest spacings run.", "",
+              "| scene | " + " | ".join("dx = %g mm" % (1e3 * dx) for dx in VARIANT_SPACINGS) + " | change |",
+              "|---|" + "---|" * (len(VARIANT_SPACINGS) + 1)]
+    for name, extra in rows:
+        peaks = [res[key("un", dx, extra)]["peak_N"] if key("un", dx, extra) in res else None for dx in VARIANT_SPACINGS]
+        done = [p for p in peaks if p]
+        change = "%+.1f %%" % (100 * (done[-1] / done[-2] - 1)) if len(done) >= 2 else "-"
+        lines.append("| %s | %s | %s |" % (name, " | ".join("%.0f" % p if p else "-" for p in peaks), change))
+    lines.append("")
+    fixed = [(b, res[key(b, 0.005)], res[key(b, 0.0025, FIXED_HORIZON)]) for b in BEAMS if key(b, 0.0025, FIXED_HORIZON) in res and key(b, 0.005) in res]
+    if fixed:
+        lines += ["## The horizon held while the spacing halves", "",
+                  "The shipped scene at dx = 5 mm (horizon pi dx = 15.7 mm) against dx = 2.5 mm with the same horizon (m = 2 pi): the",
+                  "horizon as a length of the material, the lattice refined inside it.", "",
+                  "| beam | peak at dx = 5 mm, m = pi (N) | peak at dx = 2.5 mm, m = 2 pi (N) | change | bonds at 2.5 mm | CPU (s) | peak memory (GB) |",
+                  "|---|---|---|---|---|---|---|"]
+        lines += ["| %s | %.0f | %.0f | %+.1f %% | %d | %.0f | %.1f |" % (BEAMS[b], a["peak_N"], c["peak_N"], 100 * (c["peak_N"] / a["peak_N"] - 1), c["bonds"],
+                                                                c["cpu_s"], c["peak_rss_bytes"] / 1e9) for b, a, c in fixed]
+        lines.append("")
 
 
 def plot(res):
@@ -145,10 +186,21 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--dx", type=float, nargs="+", default=SPACINGS)
     ap.add_argument("--beams", nargs="+", default=list(BEAMS), choices=list(BEAMS))
+    ap.add_argument("--variants", action="store_true", help="the unnotched beam with one ingredient changed (VARIANTS), dx = 10 to 2.5 mm")
+    ap.add_argument("--fixed-horizon", action="store_true", help="the beams at dx = 2.5 mm with the horizon of dx = 5 mm (m = 2 pi)")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds before a run is stopped (SIGTERM keeps its curve)")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
-    if not a.report:
+    if a.fixed_horizon and not a.report:
+        for beam in a.beams:
+            if key(beam, 0.0025, FIXED_HORIZON) not in load_results(DATA):
+                store_result(DATA, key(beam, 0.0025, FIXED_HORIZON), measure(beam, 0.0025, a.timeout, FIXED_HORIZON))
+    elif a.variants and not a.report:
+        for extra in VARIANTS.values():
+            for dx in VARIANT_SPACINGS:
+                if key("un", dx, extra) not in load_results(DATA):
+                    store_result(DATA, key("un", dx, extra), measure("un", dx, a.timeout, extra))
+    elif not a.report:
         for dx in a.dx:
             for beam in a.beams:
                 r = measure(beam, dx, a.timeout)
