@@ -17,10 +17,11 @@ With --variants, the unnotched beam at dx = 10, 5 and 2.5 mm with one ingredient
 time (the surface correction, its critical-stretch part, its family volume, a scatter of bond strength): which
 of them drives its peak's rise under refinement.
 
-With --fixed-horizon, the beams at dx = 2.5 mm with the horizon of the shipped dx = 5 mm scene (m = 2 pi), under
-both bond calibrations.
+With --fixed-horizon, the beams at dx = 5 and 2.5 mm with the horizon of the spacing twice as coarse (m = 2 pi),
+under both bond calibrations.
 
-Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants] [--fixed-horizon]
+Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants]
+       [--fixed-horizon [--coarse 0.01 0.005]]
        [--timeout 7200] [--report]
 """
 import argparse
@@ -41,8 +42,10 @@ SPACINGS = [0.01, 0.005, 0.0025, 0.00125]
 VARIANTS = {"critical-stretch correction off": ["-pd_sc_correction", "false"], "surface correction off": ["-pd_surface_correction", "false"],
             "partial volumes in the surface correction": ["-pd_sc_whole_cells", "false"], "5 % bond-strength scatter": ["-pd_strength_scatter", "0.05"]}
 VARIANT_SPACINGS = [0.01, 0.005, 0.0025]
-# the horizon held at the shipped dx = 5 mm scene's (pi x 5 mm) while dx halves: m-refinement instead of delta-refinement
+# the horizon held while dx halves (m-refinement instead of delta-refinement): the coarse spacing's horizon pi dx is
+# 2 pi times the fine one's
 FIXED_HORIZON = ["-pd_horizon_ratio", repr(2 * math.pi)]
+FIXED_PAIRS = [(0.01, 0.005), (0.005, 0.0025)]
 # the two bond calibrations (docs/calibration.md): the lattice's bulk stiffness depends on m under the first only
 CALIBRATIONS = {"continuum": [], "stencil": ["-pd_calibration", "stencil"]}
 DAMAGED = 0.1  # nodal damage above which a node counts in the damaged zone
@@ -171,17 +174,18 @@ def variants_report(res, lines):
         change = "%+.1f %%" % (100 * (done[-1] / done[-2] - 1)) if len(done) >= 2 else "-"
         lines.append("| %s | %s | %s |" % (name, " | ".join("%.0f" % p if p else "-" for p in peaks), change))
     lines.append("")
-    fixed = [(b, cal, res[key(b, 0.005, extra)], res[key(b, 0.0025, FIXED_HORIZON + extra)]) for b in BEAMS for cal, extra in CALIBRATIONS.items()
-             if key(b, 0.0025, FIXED_HORIZON + extra) in res and key(b, 0.005, extra) in res]
+    fixed = [(b, cal, coarse, res[key(b, coarse, extra)], res[key(b, fine, FIXED_HORIZON + extra)]) for b in BEAMS for cal, extra in CALIBRATIONS.items()
+             for coarse, fine in FIXED_PAIRS if key(b, fine, FIXED_HORIZON + extra) in res and key(b, coarse, extra) in res]
     if fixed:
         lines += ["## The horizon held while the spacing halves", "",
-                  "The shipped scene at dx = 5 mm (horizon pi dx = 15.7 mm) against dx = 2.5 mm with the same horizon (m = 2 pi): the",
+                  "A scene at the coarse spacing (horizon pi dx) against half that spacing with the same horizon (m = 2 pi): the",
                   "horizon as a length of the material, the lattice refined inside it. Under the continuum calibration (the shipped",
                   "scenes') the lattice's bulk stiffness depends on m; under the stencil calibration it is E at every m.", "",
-                  "| beam | calibration | peak at dx = 5 mm, m = pi (N) | peak at dx = 2.5 mm, m = 2 pi (N) | change | bonds at 2.5 mm | CPU (s) | peak memory (GB) |",
-                  "|---|---|---|---|---|---|---|---|"]
-        lines += ["| %s | %s | %.0f | %.0f | %+.1f %% | %d | %.0f | %.1f |" % (BEAMS[b], cal, a["peak_N"], c["peak_N"], 100 * (c["peak_N"] / a["peak_N"] - 1),
-                                                                     c["bonds"], c["cpu_s"], c["peak_rss_bytes"] / 1e9) for b, cal, a, c in fixed]
+                  "| beam | calibration | horizon (mm) | peak at dx, m = pi (N) | peak at dx / 2, m = 2 pi (N) | change | bonds at dx / 2 | CPU (s) | peak memory (GB) |",
+                  "|---|---|---|---|---|---|---|---|---|"]
+        lines += ["| %s | %s | %.1f | %.0f | %.0f | %+.1f %% | %d | %.0f | %.1f |" % (
+            BEAMS[b], cal, 1e3 * a["horizon_m"], a["peak_N"], c["peak_N"], 100 * (c["peak_N"] / a["peak_N"] - 1), c["bonds"], c["cpu_s"], c["peak_rss_bytes"] / 1e9)
+            for b, cal, coarse, a, c in fixed]
         lines.append("")
 
 
@@ -221,14 +225,16 @@ def main():
     ap.add_argument("--dx", type=float, nargs="+", default=SPACINGS)
     ap.add_argument("--beams", nargs="+", default=list(BEAMS), choices=list(BEAMS))
     ap.add_argument("--variants", action="store_true", help="the unnotched beam with one ingredient changed (VARIANTS), dx = 10 to 2.5 mm")
-    ap.add_argument("--fixed-horizon", action="store_true", help="the beams at dx = 2.5 mm with the horizon of dx = 5 mm (m = 2 pi), both calibrations")
+    ap.add_argument("--fixed-horizon", action="store_true", help="the beams at half a spacing with its horizon (m = 2 pi), both calibrations")
+    ap.add_argument("--coarse", type=float, nargs="+", default=[c for c, _ in FIXED_PAIRS], help="with --fixed-horizon: the coarse spacings of the pairs run")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds before a run is stopped (SIGTERM keeps its curve)")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
+    a.pairs = [p for p in FIXED_PAIRS if p[0] in a.coarse]
     if a.fixed_horizon and not a.report:
         for beam in a.beams:
             for extra in CALIBRATIONS.values():
-                for dx, more in ((0.005, []), (0.0025, FIXED_HORIZON)):
+                for dx, more in [(c, []) for c, _ in a.pairs] + [(f, FIXED_HORIZON) for _, f in a.pairs]:
                     if key(beam, dx, more + extra) not in load_results(DATA):
                         store_result(DATA, key(beam, dx, more + extra), measure(beam, dx, a.timeout, more + extra))
     elif a.variants and not a.report:
