@@ -22,7 +22,7 @@ under both bond calibrations.
 
 Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants]
        [--fixed-horizon [--coarse 0.01 0.005]]
-       [--timeout 7200] [--report]
+       [--timeout 7200] [--force] [--report]
 """
 import argparse
 import json
@@ -80,30 +80,53 @@ def measure(beam, dx, timeout, extra=()):
     cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_output_dir", out, "-pd_dx", repr(dx), *extra]
     with open(os.path.join(out, "log.txt"), "w") as log:
         code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
-    s = json.load(open(os.path.join(out, "summary.json")))
-    rows = curve_rows(out)
-    curve = [[r["cmod_m"], abs(r["load_N"])] for r in rows]
+    try:
+        s = json.load(open(os.path.join(out, "summary.json")))
+        curve = [[r["cmod_m"], abs(r["load_N"])] for r in curve_rows(out)]
+        zone = damaged_zone(out)
+    except (OSError, ValueError, TypeError, KeyError) as e:  # no summary, curve or fields: a run that failed to start or was killed
+        return {"status": "failed (exit %d): %s" % (code, e), "wall_s": wall, "cpu_s": cpu}
+    if not curve:
+        return {"status": "failed: empty curve; " + s["status"], "wall_s": wall, "cpu_s": cpu}
     return {"status": s["status"], "converged": s["converged"], "timed_out": timed_out, "returncode": code, "peak_N": max(c[1] for c in curve),
             "final_cmod_m": curve[-1][0], "nodes": s["nodes"], "bonds": s["bonds"], "steps": s["steps"], "newton_its": s["newton_its"],
             "ksp_its": s["ksp_its"], "wall_s": wall, "cpu_s": cpu, "peak_rss_bytes": s["memory"]["peak_rss_bytes"], "solver": s["solver"],
-            "damaged_zone_m": damaged_zone(out), "horizon_m": s["dx_m"] * s["horizon_ratio"], "curve": curve, "command": " ".join(["pdimplicit", "-options_file", os.path.relpath(cmd[2], ROOT)] + cmd[5:])}
+            "damaged_zone_m": zone, "stiffness_ratio": s.get("lattice_stiffness_ratio"), "horizon_m": s["dx_m"] * s["horizon_ratio"], "curve": curve, "command": " ".join(["pdimplicit", "-options_file", os.path.relpath(cmd[2], ROOT)] + cmd[5:])}
+
+
+def passed_peak(r):
+    """A run whose peak its table may quote: it has a curve, and the curve ends below its peak (a run stopped on the
+    rising branch, or one that failed, does not know its peak)."""
+    return r is not None and "peak_N" in r and r["curve"][-1][1] < 0.95 * r["peak_N"]
 
 
 def spacings(res, beam, extra=()):
-    return [dx for dx in SPACINGS if key(beam, dx, extra) in res]
+    """The spacings at which the beam (with the extra options) has a run whose peak is known, coarse first."""
+    return [dx for dx in SPACINGS if passed_peak(res.get(key(beam, dx, extra)))]
+
+
+def scene_value(beam, option):
+    """A material value as the shipped scene gives it."""
+    for line in open(os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam)):
+        if line.split()[:1] == [option]:
+            return float(line.split()[1])
+    return None
 
 
 def report(res):
-    lines = ["# Softening under refinement: the D = 50 mm beams at dx = 5, 2.5 and 1.25 mm", "",
+    run = sorted({dx for b in BEAMS for dx in spacings(res, b)}, reverse=True)
+    lines = ["# Softening under refinement: the D = 50 mm beams at dx = %s mm" % ", ".join("%g" % (1e3 * dx) for dx in run), "",
              "Written by `benchmarks/softening_convergence.py` from `softening_convergence.json`. The shipped scenes",
-             "(`options/gregoire_d50_{un,fn,hn}.opts`: non-linear law, E = 37 GPa, f_t = 3.9 MPa, G_F = 143.2 N/m for all",
+             "(`options/gregoire_d50_{un,fn,hn}.opts`: non-linear law, E = %g GPa, f_t = %g MPa, G_F = %g N/m for all" % (
+                 scene_value("un", "-pd_E") / 1e9, scene_value("un", "-pd_ft") / 1e6, scene_value("un", "-pd_Gf")),
              "three beams, horizon pi dx, so the horizon shrinks with dx) traced to CMOD = 0.2 mm with the solver",
-             "defaults, one rank. Envelope: the largest loads of the experiment's lower and upper curves (data/).",
+             "defaults, one rank; a run stopped by its time limit past its peak says so in 'end'. Envelope: the largest",
+             "loads of the experiment's lower and upper curves (data/).",
              "'Curves apart': RMS load difference of the two finest curves over the CMOD range both reach, over the finer",
              "one's peak. CPU: the run's own (wait4); other runs shared the two cores, so wall times are longer.", "",
              "Damaged zone: in each layer of nodes, the length along the beam of the columns whose mean damage exceeds %g" % DAMAGED,
              "at the end; at the crack's root (the lowest damaged layer: bottom face or notch tip) and the median over the",
-             "damaged layers. A localised crack's zone is about two horizons long.", "",
+             "damaged layers.", "",
              "| beam | dx (mm) | horizon (mm) | peak (N) | vs experimental mean | inside envelope | damaged zone, root / median (mm) | steps | Newton | Krylov | CPU (s) | peak memory (GB) | bytes per bond | bonds | end |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     summary = []
@@ -127,6 +150,7 @@ def report(res):
     lines.append("")
     findings(res, summary, lines)
     variants_report(res, lines)
+    fixed_horizon_report(res, lines)
     write_lines("softening_convergence.md", lines)
     plot(res)
 
@@ -150,10 +174,10 @@ def findings(res, summary, lines):
         ratios = [res[key("un", dx)]["damaged_zone_m"]["root"] / res[key("un", dx)]["horizon_m"] for dx in dxs]
         zones = ", ".join("%.1f at %g mm" % (r, 1e3 * dx) for r, dx in zip(ratios, dxs))
         notched = [res[key(b, dx)]["damaged_zone_m"]["root"] / res[key(b, dx)]["horizon_m"] for b in ("fn", "hn") for dx in spacings(res, b)]
-        if all(b > a for a, b in zip(ratios, ratios[1:])) and notched:
+        if len(ratios) >= 2 and all(b > a for a, b in zip(ratios, ratios[1:])) and notched:
             lines.append("- At the end of each unnotched run the damaged zone on the bottom face is %s horizons long: it grows in" % zones)
             lines.append("  horizons as they shrink, so the damage along the tension face spreads instead of localising in one band.")
-            lines.append("  At the notch tips it is %.1f to %.1f horizons long at every spacing." % (min(notched), max(notched)))
+            lines.append("  At the notch tips it is %.1f to %.1f horizons long." % (min(notched), max(notched)))
         else:
             lines.append("- At the end of each unnotched run the damaged zone on the bottom face is %s horizons long." % zones)
     lines.append("")
@@ -169,22 +193,26 @@ def variants_report(res, lines):
               "| scene | " + " | ".join("dx = %g mm" % (1e3 * dx) for dx in VARIANT_SPACINGS) + " | change |",
               "|---|" + "---|" * (len(VARIANT_SPACINGS) + 1)]
     for name, extra in rows:
-        peaks = [res[key("un", dx, extra)]["peak_N"] if key("un", dx, extra) in res else None for dx in VARIANT_SPACINGS]
+        peaks = [res[key("un", dx, extra)]["peak_N"] if dx in spacings(res, "un", extra) else None for dx in VARIANT_SPACINGS]
         done = [p for p in peaks if p]
         change = "%+.1f %%" % (100 * (done[-1] / done[-2] - 1)) if len(done) >= 2 else "-"
         lines.append("| %s | %s | %s |" % (name, " | ".join("%.0f" % p if p else "-" for p in peaks), change))
     lines.append("")
+
+
+def fixed_horizon_report(res, lines):
+    """The horizon held while the spacing halves, under both calibrations."""
     fixed = [(b, cal, coarse, res[key(b, coarse, extra)], res[key(b, fine, FIXED_HORIZON + extra)]) for b in BEAMS for cal, extra in CALIBRATIONS.items()
-             for coarse, fine in FIXED_PAIRS if key(b, fine, FIXED_HORIZON + extra) in res and key(b, coarse, extra) in res]
+             for coarse, fine in FIXED_PAIRS if passed_peak(res.get(key(b, fine, FIXED_HORIZON + extra))) and passed_peak(res.get(key(b, coarse, extra)))]
     if fixed:
         lines += ["## The horizon held while the spacing halves", "",
                   "A scene at the coarse spacing (horizon pi dx) against half that spacing with the same horizon (m = 2 pi): the",
                   "horizon as a length of the material, the lattice refined inside it. Under the continuum calibration (the shipped",
                   "scenes') the lattice's bulk stiffness depends on m; under the stencil calibration it is E at every m.", "",
-                  "| beam | calibration | horizon (mm) | peak at dx, m = pi (N) | peak at dx / 2, m = 2 pi (N) | change | bonds at dx / 2 | CPU (s) | peak memory (GB) |",
-                  "|---|---|---|---|---|---|---|---|---|"]
-        lines += ["| %s | %s | %.1f | %.0f | %.0f | %+.1f %% | %d | %.0f | %.1f |" % (
-            BEAMS[b], cal, 1e3 * a["horizon_m"], a["peak_N"], c["peak_N"], 100 * (c["peak_N"] / a["peak_N"] - 1), c["bonds"], c["cpu_s"], c["peak_rss_bytes"] / 1e9)
+                  "| beam | calibration | dx (mm) | horizon (mm) | peak at dx, m = pi (N) | peak at dx / 2, m = 2 pi (N) | change | bonds at dx / 2 | CPU (s) | peak memory (GB) |",
+                  "|---|---|---|---|---|---|---|---|---|---|"]
+        lines += ["| %s | %s | %g | %.1f | %.0f | %.0f | %+.1f %% | %d | %.0f | %.1f |" % (
+            BEAMS[b], cal, 1e3 * coarse, 1e3 * a["horizon_m"], a["peak_N"], c["peak_N"], 100 * (c["peak_N"] / a["peak_N"] - 1), c["bonds"], c["cpu_s"], c["peak_rss_bytes"] / 1e9)
             for b, cal, coarse, a, c in fixed]
         lines.append("")
 
@@ -192,7 +220,7 @@ def variants_report(res, lines):
 def plot(res):
     plt = pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(19, 4.5))
-    styles = {0.005: ":", 0.0025: "--", 0.00125: "-"}
+    styles = {0.01: (0, (1, 3)), 0.005: ":", 0.0025: "--", 0.00125: "-"}
     for ax, (beam, name) in zip(axes, BEAMS.items()):
         plot_gregoire_experiment(ax, beam, mean=False)
         for dx in spacings(res, beam):
@@ -207,10 +235,10 @@ def plot(res):
     ax = axes[3]
     for beam, name in BEAMS.items():
         dxs = spacings(res, beam)
-        ax.plot([1e3 * dx for dx in dxs], [res[key(beam, dx)]["peak_N"] for dx in dxs], "o-", label=name)
+        line, = ax.plot([1e3 * dx for dx in dxs], [res[key(beam, dx)]["peak_N"] for dx in dxs], "o-", label=name)
         mean, low, high = experiment_peaks(beam)
         if mean:
-            ax.axhspan(low, high, alpha=0.15)
+            ax.axhspan(low, high, alpha=0.15, color=line.get_color())
     ax.set_xscale("log")
     ax.set_xlabel("dx (mm)")
     ax.set_ylabel("peak load (N)")
@@ -228,6 +256,7 @@ def main():
     ap.add_argument("--fixed-horizon", action="store_true", help="the beams at half a spacing with its horizon (m = 2 pi), both calibrations")
     ap.add_argument("--coarse", type=float, nargs="+", default=[c for c, _ in FIXED_PAIRS], help="with --fixed-horizon: the coarse spacings of the pairs run")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds before a run is stopped (SIGTERM keeps its curve)")
+    ap.add_argument("--force", action="store_true", help="run again what is already stored")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
     a.pairs = [p for p in FIXED_PAIRS if p[0] in a.coarse]
@@ -245,6 +274,8 @@ def main():
     elif not a.report:
         for dx in a.dx:
             for beam in a.beams:
+                if key(beam, dx) in load_results(DATA) and not a.force:
+                    continue
                 r = measure(beam, dx, a.timeout)
                 print(key(beam, dx), {k: v for k, v in r.items() if k != "curve"}, flush=True)
                 store_result(DATA, key(beam, dx), r)
