@@ -138,7 +138,8 @@ def report(res):
             p = r["peak_N"]
             vs = "%+.1f %%" % (100 * (p / mean - 1)) if mean else "-"
             inside = ("yes" if low <= p <= high else "no") if mean else "-"
-            end = "CMOD %.3f mm" % (1e3 * r["final_cmod_m"]) + ("" if r["final_cmod_m"] >= 2e-4 else " (" + r["status"][:60] + ")")
+            stop = "stopped by its time limit" if r.get("timed_out") else r["status"]
+            end = "CMOD %.3f mm" % (1e3 * r["final_cmod_m"]) + ("" if r["status"].startswith("completed") else " (%s)" % stop)
             zone = r["damaged_zone_m"]
             lines.append("| %s | %g | %.1f | %.0f | %s | %s | %.1f / %.1f | %d | %d | %d | %.0f | %.1f | %.0f | %d | %s |" % (
                 name, 1e3 * dx, 1e3 * r["horizon_m"], p, vs, inside, 1e3 * zone["root"], 1e3 * zone["median"], r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["peak_rss_bytes"] / 1e9, r["peak_rss_bytes"] / r["bonds"], r["bonds"], end))
