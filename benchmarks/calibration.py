@@ -28,12 +28,11 @@ import argparse
 import math
 import os
 import sys
-import tempfile
 
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import EXE, GREGOIRE_DATA, OUT, RESULTS_DIR, ROOT, experiment_peaks, last_fields, load_results, run_timed, store_result, pyplot, save_figure  # noqa: E402
+from common import GREGOIRE_DATA, OUT, RESULTS_DIR, experiment_peaks, last_fields, load_results, run_scene, store_result, pyplot, save_figure  # noqa: E402
 
 DATA = os.path.join(RESULTS_DIR, "calibration.json")
 RATIOS = {"3": 3.0, "pi": math.pi, "4": 4.0}
@@ -59,42 +58,25 @@ def bar_strain(outdir):
 
 
 def measure(scene, dx, m, calibration, ranks):
-    import csv
-    import json
-    out = tempfile.mkdtemp(prefix="pdcal_")
-    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", scene + ".opts"), "-pd_output_dir", out,
-           "-pd_dx", repr(dx), "-pd_horizon_ratio", repr(RATIOS[m]), "-pd_calibration", calibration]
-    if ranks > 1:
-        cmd = ["mpiexec", "-n", str(ranks)] + cmd
-    with open(os.path.join(out, "log.txt"), "w") as log:
-        code, wall, _, _ = run_timed(cmd, 7200, log)
-    if code:
-        return {"status": "failed (%d)" % code, "wall_s": wall}
-    s = json.load(open(os.path.join(out, "summary.json")))
+    run = run_scene(scene, ["-pd_dx", repr(dx), "-pd_horizon_ratio", repr(RATIOS[m]), "-pd_calibration", calibration], 7200, "pdcal_", ranks)
+    if run["code"]:
+        return {"status": "failed (%d)" % run["code"], "wall_s": run["wall"]}
+    s = run["summary"]
     if scene == "bar_tension":
         exact = 1e5 / (30e9 * 0.1 * 0.1)
-        value = bar_strain(out)
+        value = bar_strain(run["out"])
     else:
         exact = timoshenko()
-        with open(os.path.join(out, "curve.csv")) as f:
-            value = abs(float(list(csv.DictReader(f))[-1]["disp_m"]))
+        value = abs(run["rows"][-1]["disp_m"])
     return {"status": "ok", "value": value, "reference": exact, "error": value / exact - 1, "nodes": s["nodes"], "bonds": s["bonds"],
-            "wall_s": wall, "ranks": ranks, "stiffness_ratio": s.get("lattice_stiffness_ratio")}
+            "wall_s": run["wall"], "ranks": ranks, "stiffness_ratio": s.get("lattice_stiffness_ratio")}
 
 
 def measure_softening(beam, dx, calibration):
-    import csv
-    import json
-    out = tempfile.mkdtemp(prefix="pdcal_")
-    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_output_dir", out, "-pd_dx", repr(dx),
-           "-pd_calibration", calibration]
-    with open(os.path.join(out, "log.txt"), "w") as log:
-        code, wall, cpu, _ = run_timed(cmd, 7200, log)
-    s = json.load(open(os.path.join(out, "summary.json")))
-    with open(os.path.join(out, "curve.csv")) as f:
-        peak = max(abs(float(r["load_N"])) for r in csv.DictReader(f))
-    return {"status": s["status"], "peak_N": peak, "nodes": s["nodes"], "bonds": s["bonds"], "newton_its": s["newton_its"], "wall_s": wall,
-            "cpu_s": cpu, "stiffness_ratio": s.get("lattice_stiffness_ratio")}
+    run = run_scene("gregoire_d50_%s" % beam, ["-pd_dx", repr(dx), "-pd_calibration", calibration], 7200, "pdcal_")
+    s = run["summary"]
+    return {"status": s["status"], "peak_N": max(abs(r["load_N"]) for r in run["rows"]), "nodes": s["nodes"], "bonds": s["bonds"],
+            "newton_its": s["newton_its"], "wall_s": run["wall"], "cpu_s": run["cpu"], "stiffness_ratio": s.get("lattice_stiffness_ratio")}
 
 
 def softening_rows(res):

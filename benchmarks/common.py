@@ -4,6 +4,7 @@ import csv
 import json
 import os
 import subprocess
+import tempfile
 import threading
 import time
 
@@ -59,6 +60,26 @@ def run_timed(cmd, timeout, stdout, stderr=subprocess.STDOUT, grace=600):
     wall = time.time() - t0
     cpu = None if under_mpiexec else ru.ru_utime + ru.ru_stime
     return os.waitstatus_to_exitcode(status), wall, cpu, wall >= timeout
+
+
+def run_scene(scene, args, timeout, prefix="pdbench_", ranks=1):
+    """Runs pdimplicit on options/<scene>.opts with the further args, into a fresh output folder (its output in
+    log.txt there), stopped after timeout seconds as run_timed says. Returns a dict: out (the folder), code, wall,
+    cpu, timed_out, summary (summary.json, or None where the run wrote none) and rows (curve.csv's rows as
+    floats, or None)."""
+    out = tempfile.mkdtemp(prefix=prefix)
+    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", scene + ".opts"), "-pd_output_dir", out, *args]
+    if ranks > 1:
+        cmd = ["mpiexec", "-n", str(ranks)] + cmd
+    with open(os.path.join(out, "log.txt"), "w") as log:
+        code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
+    run = {"out": out, "code": code, "wall": wall, "cpu": cpu, "timed_out": timed_out, "summary": None, "rows": None}
+    try:
+        run["summary"] = json.load(open(os.path.join(out, "summary.json")))
+        run["rows"] = curve_rows(out)
+    except (OSError, ValueError):
+        pass
+    return run
 
 
 def load_results(path):

@@ -11,12 +11,9 @@ Usage: benchmarks/gregoire.py [--dx 5e-3] [--beams hn,un] [--laws nonlinear] [--
        [--timeout 3600] [--results FILE] [--report]     (--report only rewrites the tables and plot)
 """
 import argparse
-import csv
-import json
 import os
-import tempfile
 
-from common import EXE, RESULTS_DIR, ROOT, experiment_peaks, load_results, plot_gregoire_experiment, run_timed, store_result, pyplot, save_figure, write_lines
+from common import RESULTS_DIR, experiment_peaks, load_results, plot_gregoire_experiment, run_scene, store_result, pyplot, save_figure, write_lines
 
 RESULTS = os.path.join(RESULTS_DIR, "gregoire.json")
 
@@ -34,27 +31,19 @@ def key(beam, law, dx, extra):
 
 
 def run_one(beam, law, dx, extra, ranks, timeout):
-    out = tempfile.mkdtemp(prefix="pdgregoire_")
-    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_law", law, "-pd_dx", str(dx),
-           "-pd_output_dir", out] + extra
-    if ranks > 1:
-        cmd = ["mpiexec", "-n", str(ranks)] + cmd
-    with open(os.path.join(out, "log.txt"), "w") as log:
-        code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
-    if timed_out:
+    run = run_scene("gregoire_d50_%s" % beam, ["-pd_law", law, "-pd_dx", str(dx)] + extra, timeout, "pdgregoire_", ranks)
+    if run["timed_out"]:
         return {"status": "stopped after %d s" % timeout, "wall": timeout}
-    r = {"wall": wall, "cpu": cpu, "returncode": code}
-    try:
-        s = json.load(open(os.path.join(out, "summary.json")))
-        rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
-    except OSError:
-        r["status"] = "failed: " + (open(os.path.join(out, "log.txt")).read().strip().splitlines() or ["?"])[-1][:100]
+    r = {"wall": run["wall"], "cpu": run["cpu"], "returncode": run["code"]}
+    s, rows = run["summary"], run["rows"]
+    if s is None or rows is None:
+        r["status"] = "failed: " + (open(os.path.join(run["out"], "log.txt")).read().strip().splitlines() or ["?"])[-1][:100]
         return r
     r.update(status=s["status"], converged=s["converged"], steps=s["steps"], newton=s["newton_its"], ksp=s["ksp_its"],
-             peak=s["peak_load_N"], final_load=float(rows[-1]["load_N"]), final_cmod=float(rows[-1]["cmod_m"]),
+             peak=s["peak_load_N"], final_load=rows[-1]["load_N"], final_cmod=rows[-1]["cmod_m"],
              broken=s["broken_bonds"], max_events=s["max_bonds_per_iteration"], solver=s["solver"], nodes=s["nodes"],
              bonds=s["bonds"], timings=s["timings"], law=s["law"],
-             curve=[[float(x["cmod_m"]), float(x["load_N"])] for x in rows])
+             curve=[[x["cmod_m"], x["load_N"]] for x in rows])
     return r
 
 

@@ -25,15 +25,13 @@ Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--b
        [--timeout 7200] [--force] [--report]
 """
 import argparse
-import json
 import math
 import os
 import sys
-import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from common import (EXE, RESULTS_DIR, ROOT, curve_difference, curve_rows, experiment_peaks, plot_gregoire_experiment,  # noqa: E402
-                    last_fields, load_results, pyplot, run_timed, save_figure, store_result, write_lines)
+from common import (RESULTS_DIR, ROOT, curve_difference, experiment_peaks, plot_gregoire_experiment,  # noqa: E402
+                    last_fields, load_results, pyplot, run_scene, save_figure, store_result, write_lines)
 
 DATA = os.path.join(RESULTS_DIR, "softening_convergence.json")
 BEAMS = {"un": "unnotched", "fn": "fifth-notched", "hn": "half-notched"}
@@ -76,22 +74,18 @@ def damaged_zone(outdir):
 
 
 def measure(beam, dx, timeout, extra=()):
-    out = tempfile.mkdtemp(prefix="pdconv_")
-    cmd = [EXE, "-options_file", os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam), "-pd_output_dir", out, "-pd_dx", repr(dx), *extra]
-    with open(os.path.join(out, "log.txt"), "w") as log:
-        code, wall, cpu, timed_out = run_timed(cmd, timeout, log)
-    try:
-        s = json.load(open(os.path.join(out, "summary.json")))
-        curve = [[r["cmod_m"], abs(r["load_N"])] for r in curve_rows(out)]
-        zone = damaged_zone(out)
-    except (OSError, ValueError, TypeError, KeyError) as e:  # no summary, curve or fields: a run that failed to start or was killed
-        return {"status": "failed (exit %d): %s" % (code, e), "wall_s": wall, "cpu_s": cpu}
-    if not curve:
-        return {"status": "failed: empty curve; " + s["status"], "wall_s": wall, "cpu_s": cpu}
-    return {"status": s["status"], "converged": s["converged"], "timed_out": timed_out, "returncode": code, "peak_N": max(c[1] for c in curve),
-            "final_cmod_m": curve[-1][0], "nodes": s["nodes"], "bonds": s["bonds"], "steps": s["steps"], "newton_its": s["newton_its"],
-            "ksp_its": s["ksp_its"], "wall_s": wall, "cpu_s": cpu, "peak_rss_bytes": s["memory"]["peak_rss_bytes"], "solver": s["solver"],
-            "damaged_zone_m": zone, "stiffness_ratio": s.get("lattice_stiffness_ratio"), "horizon_m": s["dx_m"] * s["horizon_ratio"], "curve": curve, "command": " ".join(["pdimplicit", "-options_file", os.path.relpath(cmd[2], ROOT)] + cmd[5:])}
+    args = ["-pd_dx", repr(dx), *extra]
+    run = run_scene("gregoire_d50_%s" % beam, args, timeout, "pdconv_")
+    s, rows = run["summary"], run["rows"]
+    if s is None or not rows:  # a run that failed to start or was killed
+        return {"status": "failed (exit %d)%s" % (run["code"], "; " + s["status"] if s else ""), "wall_s": run["wall"], "cpu_s": run["cpu"]}
+    curve = [[r["cmod_m"], abs(r["load_N"])] for r in rows]
+    return {"status": s["status"], "converged": s["converged"], "timed_out": run["timed_out"], "returncode": run["code"],
+            "peak_N": max(c[1] for c in curve), "final_cmod_m": curve[-1][0], "nodes": s["nodes"], "bonds": s["bonds"], "steps": s["steps"],
+            "newton_its": s["newton_its"], "ksp_its": s["ksp_its"], "wall_s": run["wall"], "cpu_s": run["cpu"],
+            "peak_rss_bytes": s["memory"]["peak_rss_bytes"], "solver": s["solver"], "damaged_zone_m": damaged_zone(run["out"]),
+            "stiffness_ratio": s.get("lattice_stiffness_ratio"), "horizon_m": s["dx_m"] * s["horizon_ratio"], "curve": curve,
+            "command": " ".join(["pdimplicit", "-options_file", "options/gregoire_d50_%s.opts" % beam] + args)}
 
 
 def passed_peak(r):
