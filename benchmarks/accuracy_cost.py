@@ -11,7 +11,7 @@ with today's defaults; the explicit one is the tuned one (EXPLICIT, tuned_ramp b
 Every finished run is kept in docs/benchmarks/accuracy_cost.json (an interrupted study resumes);
 docs/benchmarks/accuracy_cost.md and accuracy_cost.png are rewritten from it after each run.
 
-Usage: benchmarks/accuracy_cost.py [--only implicit|explicit] [--timeout 3600] [--keys PREFIXES] [--report]
+Usage: benchmarks/accuracy_cost.py [--only implicit|explicit] [--timeout 3600] [--keys PREFIXES] [--force] [--report]
        PDIMPLICIT=/path/to/binary to time a copy while the build directory changes.
 """
 import argparse
@@ -265,12 +265,13 @@ def main():
     ap.add_argument("--timeout", type=int, default=3600)
     ap.add_argument("--report", action="store_true")
     ap.add_argument("--keys", default="", help="only the points whose key starts with one of these comma-separated prefixes")
+    ap.add_argument("--force", action="store_true", help="run the selected points again even where results are stored")
     a = ap.parse_args()
     res = load_results(RESULTS)
     for scene, dx, m, paths in ([] if a.report else POINTS):
         for path in paths:
             k = key(scene, dx, m, path)
-            if k in res or (a.only and path != a.only) or (a.keys and not k.startswith(tuple(a.keys.split(",")))):
+            if (k in res and not a.force) or (a.only and path != a.only) or (a.keys and not k.startswith(tuple(a.keys.split(",")))):
                 continue
             print("running", k, flush=True)
             res = store_result(RESULTS, k, run_one(scene, dx, m, path, a.timeout))

@@ -50,6 +50,9 @@ CONFIGS = {"default": [], REFERENCE: ["-pd_limiter_max_bonds", "1"],
            # the preconditioning matrix with every bond, as before it kept only those up to 2.25 grid spacings
            "whole preconditioning matrix": ["-pd_pc_reach", "0"], "preconditioning reach 1.75": ["-pd_pc_reach", "1.75"],
            "matrix product": ["-pd_tangent_product", "matrix"],
+           # the product from the bond scalars looped over the bond list, as before it looped over the stencil's
+           # offsets (docs/design.md, point 60)
+           "bond-list product": ["-pd_stencil_product", "false"],
            "settle first": ["-pd_limiter_settle_first", "true"], "preconditioner lag 3": ["-snes_lag_preconditioner", "3"],
            # (GMRES: FGMRES preconditions on the right only)
            "left preconditioned": ["-ksp_type", "gmres", "-ksp_gmres_restart", "60", "-ksp_pc_side", "left"],

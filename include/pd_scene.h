@@ -173,6 +173,7 @@ typedef struct {
   PetscReal        pc_reach;              /* bonds up to this length (grid spacings) in the preconditioning matrix; 0: all; -1: default */
   PetscBool        assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */
   PDTangentProduct tangent_product;       /* Newton's operator: products from the bond scalars, or the assembled matrix */
+  PetscBool        stencil_product;       /* those products loop over the stencil offsets (3D, no bar nodes) */
   PetscBool        tangent_with_residual; /* Newton's tangent scalars from the residual's bond loop */
   PetscBool        residual_rows;         /* after a limiter grant, the residual recomputes only the rows it changed */
   PetscBool        diagonal_index;        /* an AIJ stiffness's diagonal read through an index of its positions */

@@ -161,8 +161,9 @@ static PetscErrorCode RowsAfterGrant(PDModel *m, Vec u, PetscReal *diff, PetscIn
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscInt *nreg, PetscReal *ka_diff,
-                                       PetscBool *reused, PetscReal *diag_diff, PetscReal *rows_diff, PetscInt rows_used[2]) {
+static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscBool *stencil, PetscInt *nreg,
+                                       PetscReal *ka_diff, PetscBool *reused, PetscReal *diag_diff, PetscReal *rows_diff,
+                                       PetscInt rows_used[2]) {
   PDScene     sc;
   PDLattice   lat;
   PDBonds     bd;
@@ -206,6 +207,11 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
   PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
   PetscCall(PDModelJacobian(NULL, u, J, P, &m));
   *nreg = m.nregularised;
+  {
+    PDStencil *st = NULL;
+    if (*shell) PetscCall(PDModelAssembledStencil(P, &st));
+    *stencil = st ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(MatMult(J, x, Jx));
   {
     /* the product of the whole tangent assembled in the same state: P itself, or, where P keeps only the
@@ -374,20 +380,28 @@ int main(int argc, char **argv) {
   }
   {
     /* the matrix-free product is the whole assembled tangent's (to round-off), constrained and regularised
-       dofs included, whether the preconditioning matrix keeps the near bonds (the default) or every one;
-       under finite kinematics and with -pd_tangent_product matrix J is the assembled matrix */
-    const char *prod[] = {"-pd_law nonlinear", "-pd_law nonlinear -pd_pc_reach 0",
-                          "-pd_law bilinear -pd_mat_type sbaij -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 "
-                          "-pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
-                          "-pd_law nonlinear -pd_kinematics finite", "-pd_law nonlinear -pd_tangent_product matrix"};
+       dofs included, whether the preconditioning matrix keeps the near bonds (the default) or every one,
+       looped over the stencil's offsets (the default in 3D) or over the bond list, with bonds cut by a
+       notch; under finite kinematics and with -pd_tangent_product matrix J is the assembled matrix */
+    const char    *prod[] = {"-pd_law nonlinear",
+                             "-pd_law nonlinear -pd_pc_reach 0",
+                             "-pd_law bilinear -pd_mat_type sbaij -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 "
+                                "-pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
+                             "-pd_law nonlinear -pd_stencil_product false",
+                             "-pd_law nonlinear -pd_notch0_box 0.02,0,0,0.02,0.025,0.01",
+                             "-pd_law nonlinear -pd_kinematics finite",
+                             "-pd_law nonlinear -pd_tangent_product matrix"};
+    const PetscInt nshell = 5, finite = 5;
     for (size_t k = 0; k < sizeof prod / sizeof *prod; k++) {
       PetscReal diff, ka_diff, diag_diff, rows_diff;
-      PetscBool shell, reused;
+      PetscBool shell, stencil, reused;
       PetscInt  nreg, rows_used[2];
       char      what[200];
-      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &nreg, &ka_diff, &reused, &diag_diff, &rows_diff, rows_used));
+      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &stencil, &nreg, &ka_diff, &reused, &diag_diff, &rows_diff, rows_used));
       PetscCall(PetscSNPrintf(what, sizeof what, "product from the bond scalars where it applies: %s", prod[k]));
-      Check(shell == (k < 3) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)shell, k < 3);
+      Check(shell == ((PetscInt)k < nshell) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)shell, (PetscInt)k < nshell);
+      PetscCall(PetscSNPrintf(what, sizeof what, "looped over the stencil's offsets unless told not to: %s", prod[k]));
+      Check(stencil == (shell && k != 3) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)stencil, shell && k != 3);
       PetscCall(PetscSNPrintf(what, sizeof what, "|J x - W x| / |W x| < 1e-13: %s", prod[k]));
       Check(diff < 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, diff, 1e-13);
       PetscCall(PetscSNPrintf(what, sizeof what, "a node without bonds regularised (3 dofs): %s", prod[k]));
@@ -403,8 +417,9 @@ int main(int argc, char **argv) {
       PetscCall(PetscSNPrintf(what, sizeof what, "the limiter granted events at the residual's displacement: %s", prod[k]));
       Check(rows_used[0] > 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)rows_used[0], 1);
       PetscCall(PetscSNPrintf(what, sizeof what, "the residual after the grant recomputed only its rows (%s): %s",
-                              k == 3 ? "not under finite kinematics" : "once", prod[k]));
-      Check(rows_used[1] == (k == 3 ? 0 : 1) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)rows_used[1], k == 3 ? 0 : 1);
+                              (PetscInt)k == finite ? "not under finite kinematics" : "once", prod[k]));
+      Check(rows_used[1] == ((PetscInt)k == finite ? 0 : 1) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)rows_used[1],
+            (PetscInt)k == finite ? 0 : 1);
       PetscCall(PetscSNPrintf(what, sizeof what, "residual and tangent scalars from the rows equal the whole loop's: %s", prod[k]));
       Check(rows_diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, rows_diff, 0);
     }

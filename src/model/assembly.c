@@ -17,15 +17,18 @@ typedef struct {
   PetscBool      fresh;  /* nothing assembled yet: every row due */
   /* a reduced matrix (PDModelCreateMatrix): the bonds up to the squared length reach2 (0: every bond),
      their blocks times scale; ncols[i] blocks in row i */
-  PetscReal reach2, scale;
-  PetscInt *ncols;
+  PetscReal  reach2, scale;
+  PetscInt  *ncols;
+  PDStencil *stencil; /* the same scalars by stencil offset, or NULL (stencil_product.c) */
 } PDAssembled;
 
 static PetscErrorCode AssembledDestroy(void *ctx) {
   PDAssembled *rec = (PDAssembled *)ctx;
 
   PetscFunctionBeginUser;
-  PetscCall(PetscFree3(rec->kl, rec->reg, rec->ncols));
+  PetscCall(PetscFree(rec->kl));
+  PetscCall(PetscFree2(rec->reg, rec->ncols));
+  PetscCall(PDStencilDestroy(&rec->stencil));
   PetscCall(PetscFree(rec));
   PetscFunctionReturn(0);
 }
@@ -46,7 +49,8 @@ PetscErrorCode PDModelAssembledAttach(PDModel *m, Mat J, PetscReal reach2, const
 
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&rec));
-  PetscCall(PetscMalloc3(PetscMax(1, bd->nbonds), &rec->kl, PetscMax(1, lat->nowned), &rec->reg, PetscMax(1, lat->nowned), &rec->ncols));
+  PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &rec->kl));
+  PetscCall(PetscMalloc2(PetscMax(1, lat->nowned), &rec->reg, PetscMax(1, lat->nowned), &rec->ncols));
   rec->fresh  = PETSC_TRUE;
   rec->reach2 = reach2;
   for (PetscInt i = 0; i < lat->nowned; i++) {
@@ -175,8 +179,11 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     /* -1: the micromodulus, never a stored value of this matrix */
     const PetscReal a = ka ? ka[e] / PDBondLength2(bs, lat->x, bd->a[e], bd->b[e]) : -1;
-    if (!every && a == rec->kl[e]) continue;
-    rec->kl[e] = a;
+    if (!every && a == (rec->stencil ? PDStencilGet(rec->stencil, e) : rec->kl[e])) continue;
+    if (rec->stencil)
+      PDStencilSet(rec->stencil, e, a);
+    else
+      rec->kl[e] = a;
     if (bd->a[e] < lat->nowned) due[bd->a[e]] = PETSC_TRUE;
     if (bd->b[e] < lat->nowned) due[bd->b[e]] = PETSC_TRUE;
   }
@@ -204,9 +211,9 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* What P was last assembled with: each bond's ka / |xi|^2 and each owned row's regularised dofs (NULL
-   before the first assembly). Read by the matrix-free product of the tangent P preconditions
-   (tangent_product.c). */
+/* What P was last assembled with: each bond's ka / |xi|^2 (NULL where the stencil view holds them) and
+   each owned row's regularised dofs (both NULL before the first assembly). Read by the matrix-free
+   product of the tangent P preconditions (tangent_product.c). */
 PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg) {
   PetscContainer c;
   PDAssembled   *rec;
@@ -220,5 +227,29 @@ PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned
   if (rec->fresh) PetscFunctionReturn(0);
   *kl  = rec->kl;
   *reg = rec->reg;
+  PetscFunctionReturn(0);
+}
+
+/* Hands the stencil view of the bond scalars to P's record before P's first assembly: the record then
+   keeps the scalars there, in place of its bond array, and destroys the view. */
+PetscErrorCode PDModelAssembledSetStencil(Mat P, PDStencil *st) {
+  PDAssembled *rec;
+
+  PetscFunctionBeginUser;
+  PetscCall(AssembledGet(P, &rec));
+  PetscCheck(rec->fresh && !rec->stencil, PetscObjectComm((PetscObject)P), PETSC_ERR_ORDER,
+             "The stencil view is set once, before the first assembly");
+  PetscCall(PetscFree(rec->kl));
+  rec->stencil = st;
+  PetscFunctionReturn(0);
+}
+
+/* The stencil view of what P was last assembled with, or NULL (none, or nothing assembled yet). */
+PetscErrorCode PDModelAssembledStencil(Mat P, PDStencil **st) {
+  PDAssembled *rec;
+
+  PetscFunctionBeginUser;
+  PetscCall(AssembledGet(P, &rec));
+  *st = rec->fresh ? NULL : rec->stencil;
   PetscFunctionReturn(0);
 }

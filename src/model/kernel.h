@@ -67,7 +67,17 @@ PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal 
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
 PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg);
-PetscErrorCode PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
+/* The tangent's product over the lattice's stencil offsets (stencil_product.c), kept up to date by the
+   assemblies of the matrix it is attached to (which then owns it). */
+typedef struct PDStencil PDStencil;
+PetscErrorCode           PDStencilCreate(const PDModel *, PDStencil **);
+PetscErrorCode           PDStencilDestroy(PDStencil **);
+void                     PDStencilSet(PDStencil *, PetscInt e, PetscReal kl);
+PetscReal                PDStencilGet(const PDStencil *, PetscInt e);
+PetscErrorCode           PDStencilApply(PDStencil *, PDModel *, Vec x, Vec y);
+PetscErrorCode           PDModelAssembledSetStencil(Mat P, PDStencil *);
+PetscErrorCode           PDModelAssembledStencil(Mat P, PDStencil **);
+PetscErrorCode           PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
 /* scaled: ka holds ka / |xi|^2 (small kinematics, kb NULL) */
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
                                         const PetscScalar *x, PetscScalar *y);

@@ -21,6 +21,7 @@ static PetscErrorCode Mult(Mat A, Vec x, Vec y) {
   PDModel             *m;
   const PetscReal     *kl;
   const unsigned char *reg;
+  PDStencil           *st;
   const PetscScalar   *xx;
   PetscScalar         *yy;
 
@@ -28,9 +29,13 @@ static PetscErrorCode Mult(Mat A, Vec x, Vec y) {
   PetscCall(MatShellGetContext(A, &tp));
   m = tp->m;
   PetscCall(PDModelAssembledState(tp->P, &kl, &reg));
-  PetscCheck(kl, PetscObjectComm((PetscObject)A), PETSC_ERR_ORDER, "The tangent product needs an assembled matrix");
+  PetscCall(PDModelAssembledStencil(tp->P, &st));
+  PetscCheck(kl || st, PetscObjectComm((PetscObject)A), PETSC_ERR_ORDER, "The tangent product needs an assembled matrix");
   PetscCall(PetscLogEventBegin(PD_LOG.product, A, x, y, 0));
-  PetscCall(PDModelTangentApplyScalars(m, NULL, kl, NULL, PETSC_TRUE, PETSC_TRUE, x, y));
+  if (st)
+    PetscCall(PDStencilApply(st, m, x, y));
+  else
+    PetscCall(PDModelTangentApplyScalars(m, NULL, kl, NULL, PETSC_TRUE, PETSC_TRUE, x, y));
   /* constrained rows are bc_scale on the diagonal, and a free dof without stiffness has the regularising
      diagonal P was given */
   PetscCall(VecGetArrayRead(x, &xx));
@@ -107,6 +112,11 @@ PetscErrorCode PDModelCreateOperators(PDModel *m, Mat *J, Mat *P) {
   if (!TangentFromBonds(m)) {
     *J = *P;
     PetscFunctionReturn(0);
+  }
+  {
+    PDStencil *st;
+    PetscCall(PDStencilCreate(m, &st));
+    if (st) PetscCall(PDModelAssembledSetStencil(*P, st));
   }
   PetscCall(PetscNew(&tp));
   tp->m = m;

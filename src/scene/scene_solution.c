@@ -73,7 +73,9 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   t = PD_TANGENT_PRODUCT_BONDS;
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_tangent_product", &t, NULL));
   sc->tangent_product = (PDTangentProduct)t;
-  sc->pc_reach        = -1;
+  sc->stencil_product = PETSC_TRUE;
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_stencil_product", &sc->stencil_product, NULL));
+  sc->pc_reach = -1;
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_pc_reach", &sc->pc_reach, &set));
   PetscCheck(!set || sc->pc_reach == 0 || sc->pc_reach >= 1, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_pc_reach: 0 (every bond) or a length of at least 1 grid spacing (the nearest neighbours), got %g",

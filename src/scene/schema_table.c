@@ -517,6 +517,12 @@ const PDOptionSpec PDOptionSchema[] = {
      .when   = PD_WHEN_IMPLICIT,
      .help   = "Newton's operator in the Krylov solves: bonds (products from the bond tangent scalars, small kinematics, "
                "the assembled matrix kept for the preconditioner) or matrix (products of the assembled matrix; docs/solvers.md)"},
+    {.name = "-pd_stencil_product",
+     .type = PD_OPTION_BOOL,
+     .def  = "true",
+     .when = PD_WHEN_IMPLICIT,
+     .help = "Products from the bond scalars loop over the lattice's stencil offsets, vectorised (3D without bar nodes); false: over "
+             "the bond list (docs/solvers.md)"},
     {.name = "-pd_tangent_with_residual",
      .type = PD_OPTION_BOOL,
      .def  = "true",
