@@ -149,9 +149,11 @@ def pyplot():
 
 
 def save_figure(fig, name, dpi=100):
-    """Lays the figure out and writes it beside the report (OUT)."""
+    """Lays the figure out, writes it beside the report (OUT) and closes it (a study rewrites its figures
+    after every run)."""
     fig.tight_layout()
     fig.savefig(os.path.join(OUT, name), dpi=dpi)
+    pyplot().close(fig)
 
 
 def write_lines(name, lines):

@@ -161,17 +161,39 @@ static PetscErrorCode RowsAfterGrant(PDModel *m, Vec u, PetscReal *diff, PetscIn
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscBool *shell, PetscBool *stencil, PetscInt *nreg,
-                                       PetscReal *ka_diff, PetscBool *reused, PetscReal *diag_diff, PetscReal *rows_diff,
+/* |J x - W x| / |W x|, W the whole tangent assembled at u (every bond, whatever P keeps) */
+static PetscErrorCode ProductAgainstWhole(PDModel *m, Vec u, Mat J, Vec x, PetscReal *diff) {
+  Mat       W;
+  Vec       Jx, Wx;
+  PetscReal nwx;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(x, &Jx));
+  PetscCall(VecDuplicate(x, &Wx));
+  PetscCall(MatMult(J, x, Jx));
+  PetscCall(PDModelCreateMatrix(m, 0, &W));
+  PetscCall(PDModelJacobian(NULL, u, W, W, m));
+  PetscCall(MatMult(W, x, Wx));
+  PetscCall(MatDestroy(&W));
+  PetscCall(VecNorm(Wx, NORM_2, &nwx));
+  PetscCall(VecAXPY(Jx, -1, Wx));
+  PetscCall(VecNorm(Jx, NORM_2, diff));
+  *diff /= nwx;
+  PetscCall(VecDestroy(&Jx));
+  PetscCall(VecDestroy(&Wx));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, PetscReal *later_diff, PetscBool *shell, PetscBool *stencil,
+                                       PetscInt *nreg, PetscReal *ka_diff, PetscBool *reused, PetscReal *diag_diff, PetscReal *rows_diff,
                                        PetscInt rows_used[2]) {
   PDScene     sc;
   PDLattice   lat;
   PDBonds     bd;
   PDModel     m;
   Mat         J, P;
-  Vec         u, x, Jx, Px;
+  Vec         u, x, Px;
   PetscRandom rnd;
-  PetscReal   npx;
 
   PetscFunctionBeginUser;
   PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
@@ -179,7 +201,6 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
   PetscCall(PetscObjectTypeCompare((PetscObject)J, MATSHELL, shell));
   PetscCall(VecDuplicate(m.f_ref, &u));
   PetscCall(VecDuplicate(u, &x));
-  PetscCall(VecDuplicate(u, &Jx));
   PetscCall(VecDuplicate(u, &Px));
   PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
   PetscCall(PetscRandomSetInterval(rnd, -1, 1));
@@ -212,20 +233,9 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
     if (*shell) PetscCall(PDModelAssembledStencil(P, &st));
     *stencil = st ? PETSC_TRUE : PETSC_FALSE;
   }
-  PetscCall(MatMult(J, x, Jx));
-  {
-    /* the product of the whole tangent assembled in the same state: P itself, or, where P keeps only the
-       near bonds (-pd_pc_reach), a matrix of every bond */
-    Mat W;
-    PetscCall(PDModelCreateMatrix(&m, 0, &W));
-    PetscCall(PDModelJacobian(NULL, u, W, W, &m));
-    PetscCall(MatMult(W, x, Px));
-    PetscCall(MatDestroy(&W));
-  }
-  PetscCall(VecNorm(Px, NORM_2, &npx));
-  PetscCall(VecAXPY(Jx, -1, Px));
-  PetscCall(VecNorm(Jx, NORM_2, diff));
-  *diff /= npx;
+  /* the product of the whole tangent assembled in the same state: P itself, or, where P keeps only the
+     near bonds (-pd_pc_reach), a matrix of every bond */
+  PetscCall(ProductAgainstWhole(&m, u, J, x, diff));
   {
     PetscReal         *ka_own, *kb_own;
     const PetscScalar *dd;
@@ -242,6 +252,10 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
     PetscCall(PDModelJacobian(NULL, u, J, P, &m));
     *reused = m.ka_at_residual;
     PetscCall(RowsAfterGrant(&m, u, rows_diff, &rows_used[0], &rows_used[1]));
+    /* the grant changed some bonds' levels: a later assembly rewrites their rows (and their scalars in
+       the stencil view), and the product is still the whole tangent's */
+    PetscCall(PDModelJacobian(NULL, u, J, P, &m));
+    PetscCall(ProductAgainstWhole(&m, u, J, x, later_diff));
     m.ka_with_residual = PETSC_FALSE;
     PetscCall(VecDestroy(&m.ka_u));
     PetscCall(PetscFree2(ka_own, kb_own));
@@ -259,7 +273,6 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
   PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&x));
-  PetscCall(VecDestroy(&Jx));
   PetscCall(VecDestroy(&Px));
   PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
@@ -329,8 +342,12 @@ int main(int argc, char **argv) {
       "-pd_law bilinear -pd_kinematics finite -pd_bilinear_form bobaru",
       "-pd_law nonlinear -pd_surface_correction false",
   };
+  PetscBool products_only = PETSC_FALSE;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
-  for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+  /* -products_only: the products' checks alone, on any number of ranks (the other checks build their
+     states from one rank's node numbering) */
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-products_only", &products_only, NULL));
+  for (size_t k = 0; !products_only && k < sizeof cases / sizeof *cases; k++) {
     PetscReal err;
     PetscInt  nneg[2];
     char      what[160];
@@ -338,7 +355,7 @@ int main(int argc, char **argv) {
     PetscCall(PetscSNPrintf(what, sizeof what, "|Jv - FD|/|Jv| < 1e-6: %s", cases[k]));
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, what, err, 1e-6);
   }
-  {
+  if (!products_only) {
     /* steel bars (hardening 2 %, yield stretch 1.5e-4) in softening concrete: segments on both branches */
     PetscReal err;
     PetscInt  nneg[2];
@@ -348,14 +365,14 @@ int main(int argc, char **argv) {
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "|Jv - FD|/|Jv| < 1e-6: nonlinear concrete with a yielding steel bar", err, 1e-6);
     Check(nplastic > 0 ? PETSC_TRUE : PETSC_FALSE, "the state has bar segments on their plastic branch", (PetscReal)nplastic, 1);
   }
-  {
+  if (!products_only) {
     /* the check can fail: the secant is not the derivative of a softening residual */
     PetscReal err;
     PetscInt  nneg[2];
     PetscCall(RunCase("-pd_law nonlinear -pd_tangent secant", &err, nneg));
     Check(err > 1e-3 ? PETSC_TRUE : PETSC_FALSE, "secant tangent in softening is detected as inexact (> 1e-3)", err, 1e-3);
   }
-  {
+  if (!products_only) {
     /* a secant preconditioning matrix leaves the Newton matrix exact and has no softening slope left */
     PetscReal err;
     PetscInt  nneg[2];
@@ -364,7 +381,7 @@ int main(int argc, char **argv) {
     Check(nneg[0] > 0 ? PETSC_TRUE : PETSC_FALSE, "the softening state has bonds of negative tangent stiffness", (PetscReal)nneg[0], 1);
     Check(nneg[1] == 0 ? PETSC_TRUE : PETSC_FALSE, "the secant preconditioning matrix has none", (PetscReal)nneg[1], 0);
   }
-  {
+  if (!products_only) {
     /* a later assembly equals a whole one; under small kinematics it writes fewer rows, under finite
        kinematics (directions follow the displacement) every row */
     const char *later[] = {"-pd_law nonlinear", "-pd_law bilinear -pd_mat_type sbaij", "-pd_law nonlinear -pd_kinematics finite"};
@@ -393,17 +410,25 @@ int main(int argc, char **argv) {
                              "-pd_law nonlinear -pd_tangent_product matrix"};
     const PetscInt nshell = 5, finite = 5;
     for (size_t k = 0; k < sizeof prod / sizeof *prod; k++) {
-      PetscReal diff, ka_diff, diag_diff, rows_diff;
+      PetscReal diff, later_diff, ka_diff, diag_diff, rows_diff;
       PetscBool shell, stencil, reused;
       PetscInt  nreg, rows_used[2];
       char      what[200];
-      PetscCall(ProductFromBonds(prod[k], &diff, &shell, &stencil, &nreg, &ka_diff, &reused, &diag_diff, &rows_diff, rows_used));
+      /* on several ranks the state breaks each rank's own middle node, and a bond two ranks hold may differ
+         between them: SBAIJ keeps one rank's copy of each pair, which the product does not, so the steel
+         case (SBAIJ) runs on one rank */
+      if (products_only && k == 2) continue;
+      PetscCall(
+          ProductFromBonds(prod[k], &diff, &later_diff, &shell, &stencil, &nreg, &ka_diff, &reused, &diag_diff, &rows_diff, rows_used));
       PetscCall(PetscSNPrintf(what, sizeof what, "product from the bond scalars where it applies: %s", prod[k]));
       Check(shell == ((PetscInt)k < nshell) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)shell, (PetscInt)k < nshell);
       PetscCall(PetscSNPrintf(what, sizeof what, "looped over the stencil's offsets unless told not to: %s", prod[k]));
       Check(stencil == (shell && k != 3) ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)stencil, shell && k != 3);
       PetscCall(PetscSNPrintf(what, sizeof what, "|J x - W x| / |W x| < 1e-13: %s", prod[k]));
       Check(diff < 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, diff, 1e-13);
+      PetscCall(PetscSNPrintf(what, sizeof what, "after a later assembly, |J x - W x| / |W x| < 1e-13: %s", prod[k]));
+      Check(later_diff < 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, later_diff, 1e-13);
+      if (products_only) continue;
       PetscCall(PetscSNPrintf(what, sizeof what, "a node without bonds regularised (3 dofs): %s", prod[k]));
       Check(nreg == 3 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)nreg, 3);
       /* the same expressions in both loops: equal to the last bit */
