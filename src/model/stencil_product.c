@@ -4,8 +4,8 @@
    an array over the nodes of a box in lattice order (the rank's x-layers and its ghost layers), the
    scalars are read in sequence, the partner of node p along offset k is node p + stride_k, and the
    loop over p is one the compiler vectorises: no node ids, no coordinates, no scattered updates. The bond
-   list's loop is bound by its loads and stores per bond (about nine cycles); this one streams one scalar
-   per bond and the box vectors, which stay in cache. */
+   list's loop is bound by its loads and stores per bond; this one streams one scalar per bond and the
+   box vectors, which stay in cache. */
 #include "pd_model.h"
 #include "kernel.h"
 #include "pd_log.h"
