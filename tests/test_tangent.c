@@ -229,8 +229,10 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
   PetscCall(PDModelJacobian(NULL, u, J, P, &m));
   *nreg = m.nregularised;
   {
-    PDStencil *st = NULL;
-    if (*shell) PetscCall(PDModelAssembledStencil(P, &st));
+    PDStencil           *st = NULL;
+    const PetscReal     *kl;
+    const unsigned char *reg;
+    if (*shell) PetscCall(PDModelAssembledState(P, &kl, &st, &reg));
     *stencil = st ? PETSC_TRUE : PETSC_FALSE;
   }
   /* the product of the whole tangent assembled in the same state: P itself, or, where P keeps only the

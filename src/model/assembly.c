@@ -162,6 +162,8 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscBool        assembled, aij, rowcopy, every;
   PDAssembled     *rec;
   PetscBool       *due;
+  PetscReal       *store;
+  const PetscInt  *slot = NULL;
 
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(PD_LOG.assembly, 0, 0, 0, 0));
@@ -176,14 +178,17 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   rec->fresh = PETSC_FALSE;
   PetscCall(PetscMalloc1(PetscMax(1, lat->nowned), &due));
   for (PetscInt i = 0; i < lat->nowned; i++) due[i] = every;
+  /* the record's scalars: its bond array, or the stencil view's places of the bonds */
+  if (rec->stencil)
+    PDStencilScalars(rec->stencil, &store, &slot);
+  else
+    store = rec->kl;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     /* -1: the micromodulus, never a stored value of this matrix */
-    const PetscReal a = ka ? ka[e] / PDBondLength2(bs, lat->x, bd->a[e], bd->b[e]) : -1;
-    if (!every && a == (rec->stencil ? PDStencilGet(rec->stencil, e) : rec->kl[e])) continue;
-    if (rec->stencil)
-      PDStencilSet(rec->stencil, e, a);
-    else
-      rec->kl[e] = a;
+    const PetscReal a  = ka ? ka[e] / PDBondLength2(bs, lat->x, bd->a[e], bd->b[e]) : -1;
+    PetscReal      *at = &store[slot ? slot[e] : e];
+    if (!every && a == *at) continue;
+    *at = a;
     if (bd->a[e] < lat->nowned) due[bd->a[e]] = PETSC_TRUE;
     if (bd->b[e] < lat->nowned) due[bd->b[e]] = PETSC_TRUE;
   }
@@ -211,21 +216,23 @@ PetscErrorCode PDModelAssembleRows(PDModel *m, const PetscScalar *u, const Petsc
   PetscFunctionReturn(0);
 }
 
-/* What P was last assembled with: each bond's ka / |xi|^2 (NULL where the stencil view holds them) and
-   each owned row's regularised dofs (both NULL before the first assembly). Read by the matrix-free
-   product of the tangent P preconditions (tangent_product.c). */
-PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg) {
+/* What P was last assembled with: each bond's ka / |xi|^2, in the record's bond array (kl) or in the
+   stencil view (st; the other NULL), and each owned row's regularised dofs (all NULL before the first
+   assembly). Read by the matrix-free product of the tangent P preconditions (tangent_product.c). */
+PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, PDStencil **st, const unsigned char **reg) {
   PetscContainer c;
   PDAssembled   *rec;
 
   PetscFunctionBeginUser;
   *kl  = NULL;
+  *st  = NULL;
   *reg = NULL;
   PetscCall(PetscObjectQuery((PetscObject)P, "PDAssembled", (PetscObject *)&c));
   if (!c) PetscFunctionReturn(0);
   PetscCall(PetscContainerGetPointer(c, (void **)&rec));
   if (rec->fresh) PetscFunctionReturn(0);
   *kl  = rec->kl;
+  *st  = rec->stencil;
   *reg = rec->reg;
   PetscFunctionReturn(0);
 }
@@ -241,15 +248,5 @@ PetscErrorCode PDModelAssembledSetStencil(Mat P, PDStencil *st) {
              "The stencil view is set once, before the first assembly");
   PetscCall(PetscFree(rec->kl));
   rec->stencil = st;
-  PetscFunctionReturn(0);
-}
-
-/* The stencil view of what P was last assembled with, or NULL (none, or nothing assembled yet). */
-PetscErrorCode PDModelAssembledStencil(Mat P, PDStencil **st) {
-  PDAssembled *rec;
-
-  PetscFunctionBeginUser;
-  PetscCall(AssembledGet(P, &rec));
-  *st = rec->fresh ? NULL : rec->stencil;
   PetscFunctionReturn(0);
 }

@@ -66,17 +66,15 @@ PetscErrorCode PDModelRowIndexDestroy(PDModel *);
 PetscErrorCode PDModelTangentScalars(PDModel *, const PetscScalar *u, PetscReal *ka, PetscReal *kb, PetscReal *kp);
 PetscErrorCode PDModelAssembleRows(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, Mat J,
                                    PetscInt *nregularised);
-PetscErrorCode PDModelAssembledState(Mat P, const PetscReal **kl, const unsigned char **reg);
 /* The tangent's product over the lattice's stencil offsets (stencil_product.c), kept up to date by the
-   assemblies of the matrix it is attached to (which then owns it). */
+   assemblies of the matrix it is attached to (which then owns it): bond e's scalar is K[slot[e]]. */
 typedef struct PDStencil PDStencil;
 PetscErrorCode           PDStencilCreate(const PDModel *, PDStencil **);
 PetscErrorCode           PDStencilDestroy(PDStencil **);
-void                     PDStencilSet(PDStencil *, PetscInt e, PetscReal kl);
-PetscReal                PDStencilGet(const PDStencil *, PetscInt e);
+void                     PDStencilScalars(PDStencil *, PetscReal **K, const PetscInt **slot);
 PetscErrorCode           PDStencilApply(PDStencil *, PDModel *, Vec x, Vec y);
 PetscErrorCode           PDModelAssembledSetStencil(Mat P, PDStencil *);
-PetscErrorCode           PDModelAssembledStencil(Mat P, PDStencil **);
+PetscErrorCode           PDModelAssembledState(Mat P, const PetscReal **kl, PDStencil **st, const unsigned char **reg);
 PetscErrorCode           PDModelEnergiesLocal(PDModel *, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated);
 /* scaled: ka holds ka / |xi|^2 (small kinematics, kb NULL) */
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
@@ -92,5 +90,7 @@ static inline const PDLawBond *PDModelBondThresholds(const PDModel *m, PetscInt 
   return m->thr ? &m->thr[e] : &law->nominal;
 }
 PetscReal      PDModelBondDamage(const PDModel *, PetscInt e);
+PetscErrorCode PDModelGetProductInput(PDModel *, Vec x, PetscBool eliminate, PetscScalar **xl, Vec *xloc);
+PetscErrorCode PDModelRestoreProductInput(PDModel *, PetscScalar **xl, Vec *xloc);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);
 PetscErrorCode PDModelRestoreLocal(PDModel *, const PetscScalar **ul, Vec *loc);

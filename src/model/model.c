@@ -641,6 +641,29 @@ PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *dis
   PetscFunctionReturn(0);
 }
 
+/* x with its ghost entries, in the model's work vector x_local, whose local form's array *xl is (with
+   eliminate, constrained entries zeroed: their columns take no part in a product); the tangent products'
+   common start, undone by PDModelRestoreProductInput. */
+PetscErrorCode PDModelGetProductInput(PDModel *m, Vec x, PetscBool eliminate, PetscScalar **xl, Vec *xloc) {
+  PetscFunctionBeginUser;
+  if (!m->x_local) PetscCall(VecDuplicate(m->u_local, &m->x_local));
+  PetscCall(VecCopy(x, m->x_local));
+  PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(m->x_local, xloc));
+  PetscCall(VecGetArray(*xloc, xl));
+  for (PetscInt k = 0; eliminate && k < m->bs * m->lat->nlocal; k++)
+    if (m->fixed_local[k]) (*xl)[k] = 0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelRestoreProductInput(PDModel *m, PetscScalar **xl, Vec *xloc) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArray(*xloc, xl));
+  PetscCall(VecGhostRestoreLocalForm(m->x_local, xloc));
+  PetscFunctionReturn(0);
+}
+
 /* y = K x on every owned dof from the bond scalars ka, kb at u (PDModelTangentApplyLocal; u NULL: at rest;
    scaled: ka holds ka / |xi|^2, small kinematics).
    With eliminate, constrained columns take no part: their entries of x count as zero. The displacement
@@ -653,10 +676,7 @@ PetscErrorCode PDModelTangentApplyScalars(PDModel *m, Vec u, const PetscReal *ka
   Vec                uloc = NULL, xloc, yloc;
 
   PetscFunctionBeginUser;
-  if (!m->x_local) PetscCall(VecDuplicate(m->u_local, &m->x_local));
-  PetscCall(VecCopy(x, m->x_local));
-  PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(PDModelGetProductInput(m, x, eliminate, &xl, &xloc));
   if (finite && u)
     PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   else if (finite) {
@@ -664,20 +684,15 @@ PetscErrorCode PDModelTangentApplyScalars(PDModel *m, Vec u, const PetscReal *ka
     PetscCall(VecZeroEntries(uloc));
     PetscCall(VecGetArrayRead(uloc, &ul));
   }
-  PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
   PetscCall(VecGhostGetLocalForm(m->f_local, &yloc));
-  PetscCall(VecGetArray(xloc, &xl));
   PetscCall(VecGetArray(yloc, &yl));
-  for (PetscInt k = 0; eliminate && k < m->bs * m->lat->nlocal; k++)
-    if (m->fixed_local[k]) xl[k] = 0;
   PetscCall(PDModelTangentApplyLocal(m, ul, ka, kb, scaled, xl, yl));
   PetscCall(VecGetArray(y, &yy));
   PetscCall(PetscArraycpy(yy, yl, m->bs * m->lat->nowned)); /* ghost entries are partial sums: dropped */
   PetscCall(VecRestoreArray(y, &yy));
   PetscCall(VecRestoreArray(yloc, &yl));
-  PetscCall(VecRestoreArray(xloc, &xl));
   PetscCall(VecGhostRestoreLocalForm(m->f_local, &yloc));
-  PetscCall(VecGhostRestoreLocalForm(m->x_local, &xloc));
+  PetscCall(PDModelRestoreProductInput(m, &xl, &xloc));
   if (uloc) PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscFunctionReturn(0);
 }

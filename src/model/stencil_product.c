@@ -11,18 +11,18 @@
 #include "pd_log.h"
 
 struct PDStencil {
-  PetscInt   n1, n2, x0; /* lattice sizes along y and z, the box's first x-layer */
-  PetscInt   nbox;       /* box nodes: its x-layers times n1 n2 */
-  PetscInt   nhalf;      /* stencil offsets of positive lexicographic order */
-  PetscInt  *stride;     /* [nhalf] box index of the partner less the base node's */
-  PetscReal *xi;         /* [3*nhalf] the offset (m) */
-  PetscInt  *lo, *hi;    /* [nhalf] base nodes [lo, hi) that hold a bond along the offset */
-  PetscReal *K;          /* [nhalf*nbox] ka / |xi|^2 of the bond from base p along offset k; 0 where none */
-  PetscInt  *slot;       /* [nbonds] the bond's place in K */
-  PetscInt  *box;        /* [nlocal] a local node's box index */
-  PetscReal *v, *y;      /* [3*nbox] each: x and y = K x in the box, one component after the other */
-  PetscReal *tbuf;       /* [maxstride + nbox] the bonds' products of one offset, zero outside [lo, hi) */
-  PetscInt   maxstride;  /* the longest stride */
+  PetscInt   n1, n2;    /* lattice sizes along y and z */
+  PetscInt   nbox;      /* box nodes: its x-layers times n1 n2 */
+  PetscInt   nhalf;     /* stencil offsets of positive lexicographic order */
+  PetscInt  *stride;    /* [nhalf] box index of the partner less the base node's */
+  PetscReal *xi;        /* [3*nhalf] the offset (m) */
+  PetscInt  *lo, *hi;   /* [nhalf] base nodes [lo, hi) that hold a bond along the offset */
+  PetscReal *K;         /* [nhalf*nbox] ka / |xi|^2 of the bond from base p along offset k; 0 where none */
+  PetscInt  *slot;      /* [nbonds] the bond's place in K */
+  PetscInt  *box;       /* [nlocal] a local node's box index */
+  PetscReal *v, *y;     /* [3*nbox] each: x and y = K x in the box, one component after the other */
+  PetscReal *tbuf;      /* [maxstride + nbox] the bonds' products of one offset, zero outside [lo, hi) */
+  PetscInt   maxstride; /* the longest stride */
 };
 
 static void BoxIJK(const PDStencil *st, PetscInt p, PetscInt ijk[3]) {
@@ -39,7 +39,7 @@ PetscErrorCode PDStencilCreate(const PDModel *m, PDStencil **out) {
   const PDBonds   *bd  = m->bonds;
   const PetscInt   R = lat->reach, w = 2 * R + 1;
   PDStencil       *st;
-  PetscInt        *index, x1;
+  PetscInt        *index, x0, x1;
   PetscBool        ok = PETSC_TRUE, allok;
 
   PetscFunctionBeginUser;
@@ -49,9 +49,9 @@ PetscErrorCode PDStencilCreate(const PDModel *m, PDStencil **out) {
   PetscCall(PetscNew(&st));
   st->n1   = lat->n[1];
   st->n2   = lat->n[2];
-  st->x0   = PetscMax(0, lat->layer_start - R);
+  x0       = PetscMax(0, lat->layer_start - R); /* the box's x-layers [x0, x1) */
   x1       = PetscMin(lat->n[0], lat->layer_end + R);
-  st->nbox = (x1 - st->x0) * st->n1 * st->n2;
+  st->nbox = (x1 - x0) * st->n1 * st->n2;
   PetscCall(PetscMalloc1(w * w * w, &index));
   for (PetscInt k = 0; k < w * w * w; k++) index[k] = -1;
   PetscCall(PetscMalloc4(lat->nstencil, &st->stride, 3 * lat->nstencil, &st->xi, lat->nstencil, &st->lo, lat->nstencil, &st->hi));
@@ -73,7 +73,7 @@ PetscErrorCode PDStencilCreate(const PDModel *m, PDStencil **out) {
     PetscCall(PetscMalloc2(PetscMax(1, bd->nbonds), &st->slot, PetscMax(1, lat->nlocal), &st->box));
     for (PetscInt l = 0; l < lat->nlocal; l++) {
       const PetscInt g = lat->gid[l], layer = st->n1 * st->n2;
-      st->box[l] = (g / layer - st->x0) * layer + g % layer;
+      st->box[l] = (g / layer - x0) * layer + g % layer;
       if (st->box[l] < 0 || st->box[l] >= st->nbox) ok = PETSC_FALSE;
     }
   }
@@ -124,13 +124,10 @@ PetscErrorCode PDStencilDestroy(PDStencil **st) {
   PetscFunctionReturn(0);
 }
 
-/* A bond's scalar in the view, set and read by the assemblies (assembly.c) */
-void PDStencilSet(PDStencil *st, PetscInt e, PetscReal kl) {
-  st->K[st->slot[e]] = kl;
-}
-
-PetscReal PDStencilGet(const PDStencil *st, PetscInt e) {
-  return st->K[st->slot[e]];
+/* The view's scalars and each bond's place among them, which the assemblies write (assembly.c) */
+void PDStencilScalars(PDStencil *st, PetscReal **K, const PetscInt **slot) {
+  *K    = st->K;
+  *slot = st->slot;
 }
 
 /* One offset: t_p = K_p xi.(v_{p+s} - v_p) for the bonds' base nodes p in [lo, hi), then
@@ -157,21 +154,14 @@ static void ApplyOffset(PetscInt nbox, PetscInt lo, PetscInt hi, PetscInt s, con
 PetscErrorCode PDStencilApply(PDStencil *st, PDModel *m, Vec x, Vec y) {
   const PDLattice *lat = m->lat;
   const PetscInt   nb  = st->nbox;
-  PetscScalar     *yy;
-  const PetscReal *xl;
+  PetscScalar     *yy, *xl;
   Vec              xloc;
 
   PetscFunctionBeginUser;
-  if (!m->x_local) PetscCall(VecDuplicate(m->u_local, &m->x_local));
-  PetscCall(VecCopy(x, m->x_local));
-  PetscCall(VecGhostUpdateBegin(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(m->x_local, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(m->x_local, &xloc));
-  PetscCall(VecGetArrayRead(xloc, &xl));
+  PetscCall(PDModelGetProductInput(m, x, PETSC_TRUE, &xl, &xloc));
   for (PetscInt l = 0; l < lat->nlocal; l++)
-    for (PetscInt c = 0; c < 3; c++) st->v[c * nb + st->box[l]] = m->fixed_local[3 * l + c] ? 0 : xl[3 * l + c];
-  PetscCall(VecRestoreArrayRead(xloc, &xl));
-  PetscCall(VecGhostRestoreLocalForm(m->x_local, &xloc));
+    for (PetscInt c = 0; c < 3; c++) st->v[c * nb + st->box[l]] = xl[3 * l + c];
+  PetscCall(PDModelRestoreProductInput(m, &xl, &xloc));
   PetscCall(PetscArrayzero(st->y, 3 * nb));
   for (PetscInt k = 0; k < st->nhalf; k++)
     if (st->lo[k] < st->hi[k])

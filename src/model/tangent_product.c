@@ -28,8 +28,7 @@ static PetscErrorCode Mult(Mat A, Vec x, Vec y) {
   PetscFunctionBeginUser;
   PetscCall(MatShellGetContext(A, &tp));
   m = tp->m;
-  PetscCall(PDModelAssembledState(tp->P, &kl, &reg));
-  PetscCall(PDModelAssembledStencil(tp->P, &st));
+  PetscCall(PDModelAssembledState(tp->P, &kl, &st, &reg));
   PetscCheck(kl || st, PetscObjectComm((PetscObject)A), PETSC_ERR_ORDER, "The tangent product needs an assembled matrix");
   PetscCall(PetscLogEventBegin(PD_LOG.product, A, x, y, 0));
   if (st)
