@@ -153,14 +153,22 @@ def dx_of(k):
     return float(k.split("/")[1][3:])
 
 
-def headline(res, scene, dx):
-    """Explicit over implicit CPU time on one beam and spacing, and how far apart their curves are."""
+def paths_compared(res, scene, dx):
+    """The implicit and explicit runs of one beam and spacing (horizon ratio pi), the explicit peak's
+    relative difference and the RMS curve difference over the implicit peak; None where either is missing."""
     ki, ke = key(scene, dx, PI, "implicit"), key(scene, dx, PI, "explicit")
     if not all(kk in res and "curve" in res[kk] and res[kk].get("cpu") for kk in (ki, ke)):
         return None
     ri, re_ = res[ki], res[ke]
-    d = curve_error(re_["curve"], [(x[0], x[1]) for x in ri["curve"] if x[0] <= 2e-4])
-    dp = re_["peak"] / ri["peak"] - 1
+    return ri, re_, re_["peak"] / ri["peak"] - 1, curve_error(re_["curve"], [(x[0], x[1]) for x in ri["curve"] if x[0] <= 2e-4])
+
+
+def headline(res, scene, dx):
+    """Explicit over implicit CPU time on one beam and spacing, and how far apart their curves are."""
+    c = paths_compared(res, scene, dx)
+    if not c:
+        return None
+    ri, re_, dp, d = c
     # equal accuracy: peak within 1 % and curves within 1 % RMS of the peak, as the ramp was chosen on the
     # half-notched beam (explicit_ramp.py allows a little more where the explicit path's slowest ramp differs)
     equal = abs(dp) <= 0.01 and d <= 0.0125

@@ -22,15 +22,12 @@ def data(name):
 
 
 def explicit_ratio(acc, dx):
-    """Explicit over implicit CPU time on the half-notched D = 50 mm beam at dx, and whether the two
-    curves are of equal accuracy (peaks within 1 %, curves within 1 % RMS of the peak)."""
-    scene = "gregoire_d50_hn"
-    ki, ke = (accuracy_cost.key(scene, dx, accuracy_cost.PI, p) for p in ("implicit", "explicit"))
-    if ki not in acc or ke not in acc:
+    """Explicit over implicit CPU time on the half-notched D = 50 mm beam at dx, both CPU times, the peaks'
+    relative difference and the curves' RMS difference over the implicit peak."""
+    c = accuracy_cost.paths_compared(acc, "gregoire_d50_hn", dx)
+    if not c:
         return None
-    ri, re_ = acc[ki], acc[ke]
-    rms = accuracy_cost.curve_error(re_["curve"], [(x[0], x[1]) for x in ri["curve"] if x[0] <= 2e-4])
-    dp = re_["peak"] / ri["peak"] - 1
+    ri, re_, dp, rms = c
     return re_["cpu"] / ri["cpu"], ri["cpu"], re_["cpu"], dp, rms
 
 
