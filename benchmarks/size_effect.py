@@ -172,6 +172,12 @@ def past_peak(r):
     return r["final_fraction"] < 0.95 or (falling and r["final_fraction"] < 0.995)
 
 
+def peak_step(r):
+    """The step (counted from 1, the curve's first row) at which a run reached its largest load."""
+    load = r["load"]
+    return max(range(len(load)), key=lambda i: load[i]) + 1
+
+
 def nominal_strength(D, P):
     """sigma_N = 3 P S / (2 b D^2), S = 2.5 D: the elastic bending stress of the unnotched section."""
     return 1.5 * P * 2.5 * (D / 1e3) / (THICKNESS * (D / 1e3) ** 2) / 1e6
@@ -223,6 +229,24 @@ def report(res):
         fit = "%.2f | %.0f" % (a ** -0.5, a / b) if a > 0 and b > 0 else "- | -"
         ratios = ", ".join("%.2f" % (q[1] / p[1]) for p, q in zip(pts, pts[1:]) if q[0] == 2 * p[0])
         lines.append("| %s, %s | %s | %s | %s |" % (KINDS[kind], how, ", ".join(str(p[0]) for p in pts), fit, ratios))
+    # IMPL-EX against the implicit path on the same beam (size, notch, model and dx), where both runs are past the
+    # structure's peak (past_peak): the peak's error and how many steps each took to reach it
+    pairs = []
+    for k in keys:
+        D, kind, dx, dim, implex = parse_key(k)
+        ref = key(D, kind, dx, dim)
+        if implex > 0 and ref in res and past_peak(res[k]) and past_peak(res[ref]):
+            pairs.append(((-dim, dx, D, list(KINDS).index(kind), implex), ref, k))
+    if pairs:
+        lines += ["", "IMPL-EX against the implicit path on the same beam (size, notch, model and dx), where both runs went past the peak;",
+                  "steps to the peak count the curve's steps up to its largest load:", "",
+                  "| D (mm) | beam | model, dx (mm) | IMPL-EX error per step | implicit peak (N) | IMPL-EX peak (N) | IMPL-EX against implicit | "
+                  "steps to the peak, implicit / IMPL-EX |", "|---|---|---|---|---|---|---|---|"]
+        for (_, dx, D, _, implex), ref, k in sorted(pairs):
+            a, b = res[ref], res[k]
+            lines.append("| %d | %s | %s | %g | %.0f | %.0f | %+.1f %% | %d / %d |" % (
+                D, KINDS[parse_key(k)[1]], method(ref), implex, a["peak"], b["peak"], 100 * (b["peak"] / a["peak"] - 1),
+                peak_step(a), peak_step(b)))
     write_lines("size_effect_table.md", lines)
     # one colour per size (curves) or notch ratio (strengths), one line style per way of computing
     size_colour = {50: "C0", 100: "C1", 200: "C2", 400: "C3"}

@@ -46,6 +46,7 @@ typedef struct {
   PetscBool bobaru;    /* bilinear form: s0 = ft/E */
   PetscReal beta;      /* trilinear force ratio at s1 */
   PetscReal k, alpha;  /* non-linear law shape */
+  PetscReal shape;     /* non-linear law: (sc - s0) s0 pcd5 / G_F, a function of k and alpha alone */
   PetscBool per_bond;  /* critical stretch from lambda_ij c (Eq. 5.32 generalised) */
   PetscInt  sublevels; /* limiter levels on the softening branch */
   PetscReal confine;   /* rise of the thresholds per unit nodal compression (-pd_fc, docs/softening.md); 0: off */
@@ -69,7 +70,8 @@ static inline void PDLawBondRaise(PDLawBond *t, PetscReal d) {
   t->s1 += d;
   t->sc += d;
 }
-void PDLawBondThresholds(const PDLaw *, PetscReal lambda, PDLawBond *);
+/* The thresholds of a bond whose micromodulus is lambda c and whose tensile strength is strength ft. */
+void PDLawBondThresholds(const PDLaw *, PetscReal lambda, PetscReal strength, PDLawBond *);
 /* Damage d(kappa) and its derivative; kappa >= 0. */
 PetscReal PDLawDamage(const PDLaw *, const PDLawBond *, PetscReal kappa, PetscReal *dd);
 /* Area under the envelope g/c from 0 to kappa (capped at sc), per unit micromodulus: the work that took

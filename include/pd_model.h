@@ -47,7 +47,8 @@ typedef struct {
   PetscReal     *kappa;          /* largest stretch reached, committed at accepted steps */
   unsigned char *level;          /* PDBondLevel the limiter allows the bond to reach */
   unsigned char *level_n;        /* levels at the last accepted step, to restart a step */
-  PDLawBond     *thr;            /* per-bond thresholds (critical-stretch correction), or NULL */
+  PetscBool      own_thresholds; /* bonds' thresholds differ from their law's (surface correction, scatter,
+                                    crushing): PDModelBondThresholds evaluates them per bond, none are stored */
   PetscReal     *shift;          /* [nbonds] rise of thr under compression (-pd_fc), or NULL */
   Vec            dilatation;     /* ghosted nodal dilatation for that rise, or NULL */
   PetscReal     *stretch;        /* per-bond scratch of the limiter and the history update */

@@ -218,7 +218,7 @@ def kink():
     # 2D fifth-notched D = 50 mm beam at dx = 5 mm, the size-effect study's scene (scripts/gregoire_scenes.py,
     # supports widened to catch a node line). On its descending branch bonds whose equilibrium lies at their
     # history kink flip back between secant and envelope; held there (real law, secant slope) they let the
-    # path go on. Without the hold this run stopped `diverged` at 53 % of its peak (docs/arclength.md).
+    # path go on. Without the hold this run stopped `diverged` on its descending branch (docs/arclength.md).
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts"))
     import gregoire_scenes
     folder = tempfile.mkdtemp(prefix="pdtest_scene_")

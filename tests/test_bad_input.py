@@ -53,6 +53,7 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_fc", "10e6"], "-pd_fc"),  # below the lattice's own E s0 / nu = 15.6 MPa
     ("gregoire_d50_hn", ["-pd_fc", "-1"], "-pd_fc"),
     ("gregoire_d50_hn", ["-pd_pc_matrix", "definite"], "-pd_pc_matrix"),
+    ("gregoire_d50_hn", ["-pd_mat_type", "baij", "-pc_type", "gamg"], "-pd_mat_type"),  # GAMG reads AIJ only
     ("gregoire_d50_hn", ["-pd_pc_reach", "0.5"], "-pd_pc_reach"),  # shorter than the nearest neighbour
     ("gregoire_d50_hn", ["-pd_pc_reach", "2", "-pd_tangent_product", "matrix"], "-pd_pc_reach"),  # the matrix is the operator
     ("cantilever", ["-pd_pc_reach", "2"], "-pd_pc_reach"),  # linear: solved with the assembled matrix

@@ -40,7 +40,7 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
     if (law->kind == PD_LAW_SLIP)
       mine[1] += law->slip.tau_max + law->slip.x[3]; /* a link never breaks: sc is infinite */
     else if (law->kind != PD_LAW_ELASTIC)
-      mine[1] += PDModelBondThresholds(m, e, law)->sc - (m->shift ? m->shift[e] : 0) + law->confine;
+      mine[1] += PDModelBondThresholds(m, e, law).sc - (m->shift ? m->shift[e] : 0) + law->confine;
     if (bd->seg && bd->seg[e] >= 0) {
       const PDSteel *st = &m->steel[bd->seg_bar[bd->seg[e]]];
       mine[1] += st->sy + st->h + (st->su < PETSC_MAX_REAL ? st->su : 0);
@@ -426,12 +426,7 @@ static PetscErrorCode ReadRise(PDModel *m, PetscViewer v) {
   PetscCall(IncidenceVec(m, "threshold_rise", &R));
   PetscCall(VecLoad(R, v));
   PetscCall(VecGetArrayRead(R, &r));
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt  e = bd->inc_bond[p];
-    const PetscReal d = PetscRealPart(r[p]) - m->shift[e];
-    PDLawBondRaise(&m->thr[e], d);
-    m->shift[e] += d;
-  }
+  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) m->shift[bd->inc_bond[p]] = PetscRealPart(r[p]);
   PetscCall(VecRestoreArrayRead(R, &r));
   PetscCall(VecDestroy(&R));
   PetscFunctionReturn(0);
@@ -461,10 +456,10 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
   PetscCall(VecGetArrayRead(K, &k));
   PetscCall(VecGetArrayRead(L, &l));
   for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt   e   = bd->inc_bond[p];
-    const PDLaw     *law = &m->law[bd->material[e]];
-    const PDLawBond *t   = PDModelBondThresholds(m, e, law);
-    m->kappa[e]          = PetscRealPart(k[p]);
+    const PetscInt  e   = bd->inc_bond[p];
+    const PDLaw    *law = &m->law[bd->material[e]];
+    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
+    m->kappa[e] = PetscRealPart(k[p]);
     /* at least the level its history has passed: a leg may run with other -pd_limiter_sublevels */
     m->level[e] = m->level_n[e] =
         (unsigned char)PetscMin(PetscMax((PetscInt)PetscRealPart(l[p]), PDLawLevelOf(law, t, m->kappa[e])), law->sublevels + 1);

@@ -8,8 +8,9 @@
    to a bond whose micromodulus is lambda c (Eq. 5.32 generalised): geo scales with lambda. */
 #include "pd_material.h"
 
-/* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5). */
-static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t) {
+/* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5) and tensile strength ft. Cheap enough to be
+   evaluated per bond wherever a bond's thresholds are needed, instead of being stored per bond. */
+static void Thresholds(const PDLaw *law, PetscReal pcd5, PetscReal ft, PDLawBond *t) {
   const PetscReal G = law->Gf;
   t->s0 = t->s1 = t->sc = PETSC_MAX_REAL;
   switch (law->kind) {
@@ -19,7 +20,7 @@ static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t) {
     break;
   case PD_LAW_BILINEAR:
     if (law->bobaru) {
-      t->s0 = law->ft / law->E;
+      t->s0 = ft / law->E;
       t->sc = 10 * G / (pcd5 * t->s0);
     } else {
       t->s0 = PetscSqrtReal(10 * (G / law->kr) / pcd5);
@@ -29,7 +30,7 @@ static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t) {
     break;
   case PD_LAW_TRILINEAR: {
     const PetscReal b = law->beta, gamma = (3 + 2 * b) / (2 * b * (1 - b));
-    t->s0 = law->ft / law->E;
+    t->s0 = ft / law->E;
     t->sc = 10 * gamma * G / (pcd5 * t->s0 * (1 + gamma * b)) + t->s0;
     t->s1 = t->s0 + (t->sc - t->s0) / gamma;
   } break;
@@ -37,15 +38,11 @@ static void Thresholds(const PDLaw *law, PetscReal pcd5, PDLawBond *t) {
     t->s0 = 0;
     t->s1 = law->slip.x[1] / law->slip_length;
     break;
-  case PD_LAW_NONLINEAR: {
-    /* corrected Eq. 5.21 (THEORY.md): the printed form is too large by alpha s0. (1 - e^k)/Q is
-       evaluated as (e^-k - 1)/(Q e^-k) so that k = 25 does not overflow anything. */
-    const PetscReal k = law->k, a = law->alpha, emk = PetscExpReal(-k);
-    const PetscReal Qs = (2 * k + a * k + 2) * emk - 2 - a * k; /* Q e^-k */
-    t->s0              = law->ft / law->E;
-    t->sc              = t->s0 + 10 * k * (emk - 1) * (1 + a) * G / (pcd5 * t->s0 * Qs);
-    t->s1              = t->sc;
-  } break;
+  case PD_LAW_NONLINEAR: /* corrected Eq. 5.21 (THEORY.md), its shape factor from PDLawSetUp */
+    t->s0 = ft / law->E;
+    t->sc = t->s0 + law->shape * G / (pcd5 * t->s0);
+    t->s1 = t->sc;
+    break;
   default:
     break;
   }
@@ -76,7 +73,14 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) 
     geo = 2 * sc->thickness * law->c * PDInfluenceMoment(sc->influence, 3) * PetscPowReal(delta, 4);
   if (sc->gf_lattice) geo *= PDLatticeFractureRatio(sc);
   law->geo = geo;
-  Thresholds(law, 5 * geo, &t);
+  if (law->kind == PD_LAW_NONLINEAR) {
+    /* the printed Eq. 5.21 is too large by alpha s0 (THEORY.md). (1 - e^k)/Q is evaluated as
+       (e^-k - 1)/(Q e^-k) so that k = 25 does not overflow anything. */
+    const PetscReal k = law->k, a = law->alpha, emk = PetscExpReal(-k);
+    const PetscReal Qs = (2 * k + a * k + 2) * emk - 2 - a * k; /* Q e^-k */
+    law->shape         = 10 * k * (emk - 1) * (1 + a) / Qs;
+  }
+  Thresholds(law, 5 * geo, law->ft, &t);
   law->nominal = t;
   if (mat->fc > 0 && law->kind != PD_LAW_ELASTIC) {
     /* Uniaxial compression eps < 0 along a lattice axis stretches the bonds across it by nu |eps| and gives
@@ -94,16 +98,16 @@ PetscErrorCode PDLawSetUp(const PDScene *sc, const PDMaterial *mat, PDLaw *law) 
 }
 
 void PDLawSetUpSlip(const PDBar *b, PetscReal link_length, PDLaw *law) {
-  *law = (PDLaw){0};
+  *law             = (PDLaw){0};
   law->kind        = PD_LAW_SLIP;
   law->sublevels   = 1;
   law->slip_length = link_length;
   PDSlipEnvelopeSetUp(b, &law->slip);
-  Thresholds(law, 0, &law->nominal);
+  Thresholds(law, 0, 0, &law->nominal);
 }
 
-void PDLawBondThresholds(const PDLaw *law, PetscReal lambda, PDLawBond *t) {
-  Thresholds(law, 5 * law->geo * (law->per_bond ? lambda : 1), t);
+void PDLawBondThresholds(const PDLaw *law, PetscReal lambda, PetscReal strength, PDLawBond *t) {
+  Thresholds(law, 5 * law->geo * (law->per_bond ? lambda : 1), strength * law->ft, t);
 }
 
 PetscReal PDLawDamage(const PDLaw *law, const PDLawBond *t, PetscReal kappa, PetscReal *dd) {
@@ -173,7 +177,7 @@ PetscReal PDLawWorkOfFracture(const PDLaw *law) {
 
 PetscReal PDLawNextThreshold(const PDLaw *law, const PDLawBond *t, PetscInt level) {
   if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP) return PETSC_MAX_REAL; /* the limiter holds neither */
-  if (law->kind == PD_LAW_LINEAR) return level <= 1 ? t->sc : PETSC_MAX_REAL; /* no softening branch to divide */
+  if (law->kind == PD_LAW_LINEAR) return level <= 1 ? t->sc : PETSC_MAX_REAL;         /* no softening branch to divide */
   if (level > law->sublevels) return PETSC_MAX_REAL;
   if (level == PD_BOND_ELASTIC) return t->s0;
   /* sub-levels hold a bond that snaps along its envelope at points the limiter grants one at a time */

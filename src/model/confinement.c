@@ -5,6 +5,7 @@
    bond's two nodes so that a uniform compression raises every bond of a node alike. The rise follows the
    committed state (an accepted step, or every tenth explicit step) and applies to the next increments. */
 #include "pd_model.h"
+#include "kernel.h"
 
 /* Dilatation of each owned node, theta = dim sum w s / sum w over its bonds with w = c |xi|^2: for a
    homogeneous strain eps, the mean of s = n.eps.n over a symmetric family is tr(eps) / dim. Ghosts by
@@ -47,12 +48,10 @@ PetscErrorCode PDModelConfine(PDModel *m, const PetscReal *s) {
   PetscCall(VecGetArrayRead(loc, &th));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw    *law  = &m->law[bd->material[e]];
-    PDLawBond      *t    = &m->thr[e];
     const PetscReal rise = law->confine * PetscMax(0, -0.5 * PetscRealPart(th[bd->a[e]] + th[bd->b[e]]));
     /* only a bond that has not begun to soften: raising the thresholds of a softened one would heal it */
-    if (law->confine == 0 || m->kappa[e] >= t->s0 || rise <= m->shift[e]) continue;
-    PDLawBondRaise(t, rise - m->shift[e]);
-    m->shift[e] = rise;
+    if (law->confine == 0 || rise <= m->shift[e] || m->kappa[e] >= PDModelBondThresholds(m, e, law).s0) continue;
+    m->shift[e] = rise; /* the bond's thresholds are its unconfined ones raised by it */
   }
   PetscCall(VecRestoreArrayRead(loc, &th));
   PetscCall(VecGhostRestoreLocalForm(m->dilatation, &loc));

@@ -37,8 +37,8 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
     return;
   }
   {
-    const PDLawBond *t       = PDModelBondThresholds(m, e, law);
-    PetscBool        loading = a >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
+    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
+    PetscBool       loading = a >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
     /* below the damage threshold (and below the breaking one, which a coarse bilinear bond can have
        lower): elastic on every branch and at every level, the state of most bonds */
     if (PetscMax(m->kappa[e], a) < PetscMin(t->s0, t->sc)) {
@@ -335,11 +335,11 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
       continue;
     }
     {
-      const PDLaw     *law = &m->law[bd->material[e]];
-      const PDLawBond *t   = PDModelBondThresholds(m, e, law);
-      const PetscReal  a   = PDLawHistoryStretch(law, s);
-      PetscReal        cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(a, 0), &cap);
-      PetscReal        d = PDLawDamage(law, t, kap, &dd);
+      const PDLaw    *law = &m->law[bd->material[e]];
+      const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
+      const PetscReal a = PDLawHistoryStretch(law, s);
+      PetscReal       cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(a, 0), &cap);
+      PetscReal       d = PDLawDamage(law, t, kap, &dd);
       es += 0.5 * c * (a < 0 ? 1 : 1 - d) * s * s * L0;
       ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
     }
@@ -543,5 +543,8 @@ PetscReal PDModelBondDamage(const PDModel *m, PetscInt e) {
   PetscReal    dd;
   if (!m->softening) return 0;
   law = &m->law[m->bonds->material[e]];
-  return PDLawDamage(law, PDModelBondThresholds(m, e, law), m->kappa[e], &dd);
+  {
+    const PDLawBond t = PDModelBondThresholds(m, e, law);
+    return PDLawDamage(law, &t, m->kappa[e], &dd);
+  }
 }

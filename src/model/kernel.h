@@ -85,9 +85,17 @@ void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
 
-/* A bond's stretch thresholds: its own (scatter, surface correction) or its law's nominal ones. */
-static inline const PDLawBond *PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
-  return m->thr ? &m->thr[e] : &law->nominal;
+/* A bond's stretch thresholds: its own (surface correction, strength scatter, crushing's rise) or its law's
+   nominal ones. Evaluated, not stored: a few operations per bond cost less than loading three stored reals. */
+static inline PDLawBond PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
+  const PDBonds *bd = m->bonds;
+  PDLawBond      t;
+  if (!m->own_thresholds) return law->nominal;
+  PDLawBondThresholds(law, bd->lambda ? bd->lambda[e] : 1,
+                      m->scene->strength_scatter > 0 ? 1 + m->scene->strength_scatter * PDUnitFromId(PDBondGlobalId(m->lat, bd, e)) : 1,
+                      &t);
+  if (m->shift) PDLawBondRaise(&t, m->shift[e]);
+  return t;
 }
 PetscReal      PDModelBondDamage(const PDModel *, PetscInt e);
 PetscErrorCode PDModelGetProductInput(PDModel *, Vec x, PetscBool eliminate, PetscScalar **xl, Vec *xloc);

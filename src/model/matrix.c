@@ -17,6 +17,8 @@
 #define PD_GAMG_MIN_NODES_SOFTENING 2000
 
 PetscBool PDModelDefaultsToGAMG(const PDModel *m) {
+  /* block storage chosen with -pd_mat_type keeps block Jacobi: GAMG reads AIJ only */
+  if (m->scene->mat_type[0] && strcmp(m->scene->mat_type, MATAIJ)) return PETSC_FALSE;
   return (m->bs == 2 || m->gamg_after_icc ||
           (!m->linear && m->lat->nglobal >= (m->softening ? PD_GAMG_MIN_NODES_SOFTENING : PD_GAMG_MIN_NODES)))
              ? PETSC_TRUE

@@ -311,10 +311,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
     PetscBool crush  = PETSC_FALSE;
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
-    if (bd->lambda || sc->strength_scatter > 0 || crush) {
-      PetscCall(PetscMalloc1(nb, &m->thr));
-      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PDLawBond);
-    }
+    m->own_thresholds = bd->lambda || sc->strength_scatter > 0 || crush ? PETSC_TRUE : PETSC_FALSE;
     if (crush) {
       PetscCall(PetscCalloc1(nb, &m->shift));
       PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
@@ -357,15 +354,7 @@ PetscReal PDModelNodeMass(const PDModel *m, PetscInt i) {
 }
 
 void PDModelResetThresholds(PDModel *m) {
-  const PDBonds *bd = m->bonds;
-
-  if (!m->thr) return;
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    PDLaw law = m->law[bd->material[e]];
-    law.ft *= 1 + m->scene->strength_scatter * PDUnitFromId(PDBondGlobalId(m->lat, bd, e));
-    PDLawBondThresholds(&law, bd->lambda ? bd->lambda[e] : 1, &m->thr[e]);
-    if (m->shift) m->shift[e] = 0;
-  }
+  for (PetscInt e = 0; m->shift && e < m->bonds->nbonds; e++) m->shift[e] = 0;
 }
 
 PetscErrorCode PDModelDestroy(PDModel *m) {
@@ -391,7 +380,6 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree(m->kp));
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
-  PetscCall(PetscFree(m->thr));
   PetscCall(PetscFree(m->shift));
   PetscCall(VecDestroy(&m->dilatation));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));

@@ -5,7 +5,16 @@
 #include "pd_scene.h"
 
 /* Indexed options: -pd_materialK_*, -pd_notchK_*, -pd_regionK_*, -pd_voidK_*, -pd_barK_*, -pd_nofailK_*, -pd_plateK_*. */
-typedef enum { PD_FAMILY_NONE, PD_FAMILY_MATERIAL, PD_FAMILY_NOTCH, PD_FAMILY_REGION, PD_FAMILY_VOID, PD_FAMILY_BAR, PD_FAMILY_NOFAIL, PD_FAMILY_PLATE } PDOptionFamily;
+typedef enum {
+  PD_FAMILY_NONE,
+  PD_FAMILY_MATERIAL,
+  PD_FAMILY_NOTCH,
+  PD_FAMILY_REGION,
+  PD_FAMILY_VOID,
+  PD_FAMILY_BAR,
+  PD_FAMILY_NOFAIL,
+  PD_FAMILY_PLATE
+} PDOptionFamily;
 
 /* When an option applies; an option given where it does not is an input error. */
 typedef enum {

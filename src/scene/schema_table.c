@@ -67,9 +67,8 @@ const PDOptionSpec PDOptionSchema[] = {
     {.name = "-pd_sc_whole_cells",
      .type = PD_OPTION_BOOL,
      .def  = "false",
-     .help =
-         "Surface correction: the family volume counts neighbour cells whole, as the Hobbs thesis's code does (bulk lambda 1.065 "
-         "instead of 1.19; bulk bonds 11 % softer and weaker); the 3D Gregoire scenes set it to reproduce the thesis (docs/softening.md)"},
+     .help = "Surface correction: the family volume counts neighbour cells whole, as the Hobbs thesis's code does (a smaller bulk "
+             "correction factor: bulk bonds softer and weaker); the 3D Gregoire scenes set it to reproduce the thesis (docs/softening.md)"},
     {.name   = "-pd_calibration",
      .type   = PD_OPTION_ENUM,
      .values = PDCalibrationNames,
@@ -103,7 +102,7 @@ const PDOptionSpec PDOptionSchema[] = {
      .type = PD_OPTION_BOOL,
      .def  = "false",
      .help = "Critical stretches calibrated so that a crack plane of the lattice releases G_F (default: the thesis' continuum calibration, "
-             "which the lattice reaches to about 75 %; summary.json reports the ratio)"},
+             "which the lattice falls short of; summary.json reports the ratio)"},
     /* materials: -pd_E ... for the base material, -pd_materialK_E ... for further ones */
     {.name     = "_box",
      .family   = MAT,
@@ -644,8 +643,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .range = "[0, 1)",
      .when  = PD_WHEN_PATH,
      .help  = "IMPL-EX: each step uses bond damage extrapolated from the last two steps and solves a secant problem (one or two Newton "
-              "iterations, no kink to cycle on); the value is the largest damage error per step the arc length adapts to (0.01: peak "
-              "within 0.5 % of the implicit path on the 2D beam); 0: implicit. Not with the dissipation constraint"},
+              "iterations, no kink to cycle on); the value is the largest damage error per step the arc length adapts to (docs/arclength.md "
+              "for its accuracy); 0: implicit. Not with the dissipation constraint"},
     {.name  = "-pd_stop_fraction",
      .type  = PD_OPTION_REAL,
      .def   = "0.02",

@@ -89,7 +89,7 @@ static PetscErrorCode Eq46TimeStep(PDModel *m, PetscReal *dt) {
 
 /* Largest eigenvalue of M^-1 K on the free dofs (constrained ones follow the prescribed motion), K the
    undamaged elastic stiffness at rest: velocity Verlet is stable for dt < 2/sqrt(lambda_max). The
-   Gershgorin bound (PDModelStiffnessRowBound) is guaranteed but about 3 times too large on the
+   Gershgorin bound (PDModelStiffnessRowBound) is guaranteed but several times too large on the
    Gregoire lattices; power iteration x <- M^-1 K x from a start fixed by the global dof ids (the same on
    any rank count) gives the Rayleigh quotient x^T K x / x^T M x, a lower bound that rises towards
    lambda_max (docs/explicit.md for how close it gets, and the margin the default safety leaves). */

@@ -29,8 +29,9 @@ static int CompareIds(const void *pa, const void *pb) {
 }
 
 static PetscReal Threshold(const PDModel *m, PetscInt e) {
-  const PDLaw *law = &m->law[m->bonds->material[e]];
-  return PDLawNextThreshold(law, PDModelBondThresholds(m, e, law), m->level[e]);
+  const PDLaw    *law = &m->law[m->bonds->material[e]];
+  const PDLawBond t   = PDModelBondThresholds(m, e, law);
+  return PDLawNextThreshold(law, &t, m->level[e]);
 }
 
 /* A bond moves up one level; the static driver's next residual recomputes only the rows of such bonds
@@ -139,8 +140,8 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
 /* A bond is softened when its history lies on the softening branch (s0 < kappa_n < sc): only then does
    its force have a kink at kappa_n (below s0 envelope and secant coincide). */
 static PetscBool Softened(const PDModel *m, PetscInt e) {
-  const PDLaw     *law = &m->law[m->bonds->material[e]];
-  const PDLawBond *t   = PDModelBondThresholds(m, e, law);
+  const PDLaw    *law = &m->law[m->bonds->material[e]];
+  const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
   return law->kind != PD_LAW_ELASTIC && law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0 && m->kappa[e] < t->sc ? PETSC_TRUE : PETSC_FALSE;
 }
 
@@ -154,8 +155,8 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
   for (PetscInt sg = 0; sg < bd->nseg; sg++)
     if ((m->sp_n[sg] != 0 || m->ruptured_n[sg]) && PDBondCountedHere(m->lat, bd, bd->seg_bond[sg])) count[2]++;
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
-    const PDLaw     *law = &m->law[bd->material[e]];
-    const PDLawBond *t   = PDModelBondThresholds(m, e, law);
+    const PDLaw    *law = &m->law[bd->material[e]];
+    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
     if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP || !PDBondCountedHere(m->lat, bd, e)) continue;
     if (m->kappa[e] >= t->sc)
       count[0]++;

@@ -27,7 +27,7 @@ PetscErrorCode PDPathDestroy(PDPath *p) {
    reactions are f_int on every dof, so the external work of the step is the integral of f_int along it,
    taken as the cubic through both ends and their tangents (Hermite):
    dW = (f_n + f).du / 2 + (K_n du - K du).du / 12, both tangents with the step's starting history.
-   The plain trapezoid left 1.4 % of the work unbalanced after the large steps where cracking starts.
+   The plain trapezoid left a visible part of the work unbalanced after the large steps where cracking starts.
    Afterwards u_n = u and f_n = f_int(u). */
 PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscReal lam, PetscInt its, PetscInt lits, PDCurveRow *row) {
   PetscScalar    dw, c = 0;

@@ -2,13 +2,13 @@
 
    Two policies:
    - a fixed lag across Newton iterations, limiter stages and steps: every sixth assembly for block
-     ICC(0) in 3D (PD_ICC_LAG), every third for 2D models (PD_FIXED_LAG). The factor was 37 % of the
-     half-notched beam's time when rebuilt every time; a lag of 2 halved the run, 3 took it further, 5
+     ICC(0) in 3D (PD_ICC_LAG), every third for 2D models (PD_FIXED_LAG). Rebuilt every time, the factor
+     took a large share of the half-notched beam's time; short lags took most of it away, longer ones
      gained nothing more while each increment was settled twice. Once an increment's first Newton
      iteration became a limiter stage (docs/design.md, point 42), most assemblies are stages' whose
      linear solves ask little, and a lag of 6 halved the factorisations' time for a few more Krylov
      iterations (docs/benchmarks/solve_profile.md). Rebuilding it only when stale
-     gained nothing at 3,500 nodes (fewer factors, more Krylov iterations), and on the 2D beams it let
+     gained nothing on the D = 50 mm beams at dx = 5 mm (fewer factors, more Krylov iterations), and on the 2D beams it let
      left-preconditioned GMRES meet its tolerance on a preconditioned residual that no longer measured
      the true one, so that Newton stalled (docs/solvers.md).
    - when stale: 3D models under GAMG (the default from PD_GAMG_MIN_NODES_SOFTENING nodes, or -pc_type gamg), whose set-up (aggregation,

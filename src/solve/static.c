@@ -29,8 +29,8 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PetscCall(KSPGMRESSetRestart(ksp, PD_GMRES_RESTART));
   PetscCall(KSPGetPC(ksp, &pc));
   /* 2D models and large 3D ones: algebraic multigrid with the rigid-body near-null space; ICC(0) loses
-     its grip on long beams (2D half-notched D = 200 mm under path following: 291,232 KSP iterations and
-     138 s with ICC, 20,942 and 30 s with GAMG; PDModelDefaultsToGAMG) */
+     its grip on long beams, where its Krylov iterations grow by an order of magnitude (docs/solvers.md;
+     PDModelDefaultsToGAMG) */
   PetscCall(PCSetType(pc, PDModelDefaultsToGAMG(m) ? PCGAMG : m->linear ? PCJACOBI : PCBJACOBI));
   /* a Krylov solve of a softening model that needs thousands of iterations has stalled (the half-notched beam's
      need a few dozen): give up early, so that the increment is cut or the preconditioner changed
