@@ -70,8 +70,47 @@ static inline void PDLawBondRaise(PDLawBond *t, PetscReal d) {
   t->s1 += d;
   t->sc += d;
 }
-/* The thresholds of a bond whose micromodulus is lambda c and whose tensile strength is strength ft. */
+/* The thresholds of a bond whose micromodulus is lambda c and whose tensile strength is strength ft, from
+   the formulas (laws.c). */
 void PDLawBondThresholds(const PDLaw *, PetscReal lambda, PetscReal strength, PDLawBond *);
+/* The same from the nominal thresholds, by how the formulas scale: a law that leaves its elastic branch at
+   ft/E moves s0 with the strength and its softening span (sc - s0, s1 - s0; sc itself for the bilinear law
+   of Bobaru) with 1/(lambda strength); the linear law and Zaccariotto's bilinear one scale every threshold
+   with 1/sqrt(lambda), whatever ft. A few operations: cheaper per bond and residual than stored thresholds
+   are to load (tests/test_laws.c compares both forms). */
+static inline void PDLawBondThresholdsScaled(const PDLaw *law, PetscReal lambda, PetscReal strength, PDLawBond *t) {
+  const PDLawBond *n = &law->nominal;
+  PetscReal        k;
+  if (!law->per_bond) lambda = 1;
+  switch (law->kind) {
+  case PD_LAW_LINEAR:
+    k     = 1 / PetscSqrtReal(lambda);
+    t->s0 = n->s0 * k;
+    t->s1 = n->s1 * k;
+    t->sc = n->sc * k;
+    break;
+  case PD_LAW_BILINEAR:
+    if (!law->bobaru) {
+      k     = 1 / PetscSqrtReal(lambda);
+      t->s0 = n->s0 * k;
+      t->s1 = n->s1 * k;
+      t->sc = n->sc * k;
+    } else {
+      t->s0 = n->s0 * strength;
+      t->s1 = t->sc = n->sc / (lambda * strength);
+    }
+    break;
+  case PD_LAW_TRILINEAR:
+  case PD_LAW_NONLINEAR:
+    k     = 1 / (lambda * strength);
+    t->s0 = n->s0 * strength;
+    t->s1 = t->s0 + (n->s1 - n->s0) * k;
+    t->sc = t->s0 + (n->sc - n->s0) * k;
+    break;
+  default: /* elastic, bond slip: no thresholds of their own */
+    *t = *n;
+  }
+}
 /* Damage d(kappa) and its derivative; kappa >= 0. */
 PetscReal PDLawDamage(const PDLaw *, const PDLawBond *, PetscReal kappa, PetscReal *dd);
 /* Area under the envelope g/c from 0 to kappa (capped at sc), per unit micromodulus: the work that took

@@ -31,6 +31,35 @@ static void MakeLaw(PDLawKind kind, PetscReal E, PetscReal Gf, PetscReal dx, Pet
   PDLawSetUp(&sc, &mat, law);
 }
 
+/* A bond's own thresholds (surface-correction factor lambda, strength factor) as the kernel evaluates them, by
+   scaling the nominal ones, against the formulas themselves, for every law and both bilinear forms. */
+static void ScaledThresholds(void) {
+  const PDLawKind kinds[5]  = {PD_LAW_LINEAR, PD_LAW_BILINEAR, PD_LAW_BILINEAR, PD_LAW_TRILINEAR, PD_LAW_NONLINEAR};
+  const char     *names[5]  = {"linear", "bilinear k_r", "bilinear Bobaru", "trilinear", "nonlinear"};
+  const PetscReal lambda[3] = {0.7, 1.0, 1.6}, strength[3] = {0.95, 1.0, 1.05};
+
+  for (PetscInt k = 0; k < 5; k++) {
+    PDLaw     law;
+    PetscReal worst = 0;
+    MakeLaw(kinds[k], 37e9, 143.2, 5e-3, PETSC_PI, &law);
+    law.bobaru   = k == 2 ? PETSC_TRUE : PETSC_FALSE;
+    law.per_bond = PETSC_TRUE;
+    PDLawBondThresholds(&law, 1, 1, &law.nominal); /* the nominal bond of the chosen form */
+    for (PetscInt i = 0; i < 3; i++)
+      for (PetscInt j = 0; j < 3; j++) {
+        PDLawBond direct, scaled;
+        PDLawBondThresholds(&law, lambda[i], strength[j], &direct);
+        PDLawBondThresholdsScaled(&law, lambda[i], strength[j], &scaled);
+        worst = PetscMax(worst, PetscAbsReal(scaled.s0 - direct.s0) / direct.s0);
+        worst = PetscMax(worst, PetscAbsReal(scaled.s1 - direct.s1) / direct.s1);
+        worst = PetscMax(worst, PetscAbsReal(scaled.sc - direct.sc) / direct.sc);
+      }
+    char what[96];
+    PetscSNPrintf(what, sizeof what, "%s: scaled thresholds against the formulas (relative, 1e-13)", names[k]);
+    Check(worst <= 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, worst, 0);
+  }
+}
+
 /* Force per unit micromodulus along a stretch path, with the history kept as the kernel keeps it. */
 static PetscReal Force(const PDLaw *law, PetscReal *kappa, PetscReal s) {
   PetscReal dd, d;
@@ -180,6 +209,7 @@ int main(int argc, char **argv) {
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   SlipLaw();
+  ScaledThresholds();
   /* Table 5.1: E = 37 GPa, ft = 3.9 MPa, G_F = 143.2 N/m, dx = 5 mm. All nine printed values round
      alike with delta = pi dx; with delta = 3.14 dx (Table A.1) the non-linear sc would read 7.49e-3. */
   MakeLaw(PD_LAW_LINEAR, 37e9, 143.2, 5e-3, PETSC_PI, &law);

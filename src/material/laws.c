@@ -8,8 +8,8 @@
    to a bond whose micromodulus is lambda c (Eq. 5.32 generalised): geo scales with lambda. */
 #include "pd_material.h"
 
-/* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5) and tensile strength ft. Cheap enough to be
-   evaluated per bond wherever a bond's thresholds are needed, instead of being stored per bond. */
+/* s0, s1, sc for a given 5 geo (the thesis's pi c delta^5) and tensile strength ft: the nominal bond's, and
+   the reference PDLawBondThresholdsScaled is tested against (per bond it scales the nominal ones). */
 static void Thresholds(const PDLaw *law, PetscReal pcd5, PetscReal ft, PDLawBond *t) {
   const PetscReal G = law->Gf;
   t->s0 = t->s1 = t->sc = PETSC_MAX_REAL;

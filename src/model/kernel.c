@@ -31,7 +31,8 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
   }
   law = &m->law[m->bonds->material[e]];
   a   = PDLawHistoryStretch(law, s);
-  if (a < 0 || law->kind == PD_LAW_ELASTIC) {
+  /* below every threshold of its material (PDModel onset): elastic, its own thresholds unneeded */
+  if (a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]]) {
     *g  = c * s;
     *gp = c;
     return;

@@ -86,14 +86,11 @@ PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
 
 /* A bond's stretch thresholds: its own (surface correction, strength scatter, crushing's rise) or its law's
-   nominal ones. Evaluated, not stored: a few operations per bond cost less than loading three stored reals. */
+   nominal ones. Evaluated from the nominal ones, not stored (PDLawBondThresholdsScaled). */
 static inline PDLawBond PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
-  const PDBonds *bd = m->bonds;
-  PDLawBond      t;
+  PDLawBond t;
   if (!m->own_thresholds) return law->nominal;
-  PDLawBondThresholds(law, bd->lambda ? bd->lambda[e] : 1,
-                      m->scene->strength_scatter > 0 ? 1 + m->scene->strength_scatter * PDUnitFromId(PDBondGlobalId(m->lat, bd, e)) : 1,
-                      &t);
+  PDLawBondThresholdsScaled(law, m->bonds->lambda ? m->bonds->lambda[e] : 1, m->strength ? m->strength[e] : 1, &t);
   if (m->shift) PDLawBondRaise(&t, m->shift[e]);
   return t;
 }

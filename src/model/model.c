@@ -312,6 +312,18 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     PetscBool crush  = PETSC_FALSE;
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
     m->own_thresholds = bd->lambda || sc->strength_scatter > 0 || crush ? PETSC_TRUE : PETSC_FALSE;
+    if (sc->strength_scatter > 0) { /* from the bond's global id, so that any rank count draws the same */
+      PetscCall(PetscMalloc1(nb, &m->strength));
+      for (PetscInt e = 0; e < bd->nbonds; e++) m->strength[e] = 1 + sc->strength_scatter * PDUnitFromId(PDBondGlobalId(lat, bd, e));
+      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
+    }
+    for (PetscInt k = 0; k < PD_MATERIALS_ALL; k++) m->onset[k] = PETSC_MAX_REAL;
+    for (PetscInt e = 0; e < bd->nbonds; e++) { /* crushing's rises only raise thresholds: the floor holds */
+      const PDLaw    *law = &m->law[bd->material[e]];
+      const PDLawBond t   = PDModelBondThresholds(m, e, law);
+      if (law->kind == PD_LAW_ELASTIC) continue; /* no threshold at all (bar segments across a notch) */
+      m->onset[bd->material[e]] = PetscMin(m->onset[bd->material[e]], PetscMin(t.s0, t.sc));
+    }
     if (crush) {
       PetscCall(PetscCalloc1(nb, &m->shift));
       PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
@@ -381,6 +393,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->shift));
+  PetscCall(PetscFree(m->strength));
   PetscCall(VecDestroy(&m->dilatation));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));
   PetscFunctionReturn(0);

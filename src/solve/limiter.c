@@ -74,6 +74,10 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
      breaks: it goes on at once, one part per stage, and only the other events are counted and capped */
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw *law = &m->law[bd->material[e]];
+    if (s[e] < m->onset[bd->material[e]]) { /* below every threshold of its material */
+      s[e] = 0;
+      continue;
+    }
     s[e] /= Threshold(m, e);
     if (s[e] < 1) continue;
     if (law->kind != PD_LAW_LINEAR && m->level[e] >= PD_BOND_SOFTENING && m->level[e] < law->sublevels) {
@@ -180,7 +184,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   s = m->stretch;
   PetscCall(PDModelStretchesAt(m, u, s));
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
-    const PetscReal cap = Threshold(m, e);
+    const PetscReal cap = s[e] < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
     m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
     m->level_n[e]       = m->level[e];
   }
