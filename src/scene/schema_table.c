@@ -502,7 +502,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .when     = PD_WHEN_IMPLICIT,
      .help =
          "Stiffness storage. AIJ where GAMG preconditions (-pc_type gamg, and the default preconditioner of 2D scenes and of non-linear "
-         "3D scenes from 10,000 nodes, softening ones from 2,000, docs/solvers.md)"},
+         "3D scenes from 10,000 nodes, softening ones from 2,000, docs/solvers.md). Block storage chosen here keeps block Jacobi as "
+         "the default preconditioner (GAMG reads AIJ only; with -pc_type gamg it is bad input)"},
     {.name = "-pd_assembly_changed_rows",
      .type = PD_OPTION_BOOL,
      .def  = "true",
