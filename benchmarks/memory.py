@@ -19,12 +19,12 @@ PATH = ["-pd_control", "arclength", "-pd_stop_fraction", "0.1", "-pd_arclength_i
 # label -> extra options. The Krylov bases of path following: the direction's solve and the augmented
 # corrector's, both FGMRES(60), whose basis grows with the iterations a solve reaches; the preconditioning
 # matrix's reach (docs/solvers.md), whose matrix and GAMG set-up scale with its bonds; GAMG's Galerkin
-# products on two ranks, whose default algorithm keeps intermediate products for reuse, against PETSc's
-# all-at-once one, which keeps none
+# products on two ranks, all at once by default (src/solve/static.c), against the algorithm PETSc itself
+# picks for this matrix, which keeps intermediate products for reuse
 CONFIGS = {"default": [],
            "Krylov restart 30": ["-ksp_gmres_restart", "30", "-pd_augmented_ksp_gmres_restart", "30"],
            "preconditioning reach 1.75": ["-pd_pc_reach", "1.75"],
-           "Galerkin products all at once": ["-matptap_via", "allatonce"],
+           "Galerkin products kept for reuse": ["-matptap_via", "nonscalable"],
            "one rank": []}
 RANKS = {"one rank": 1}  # the others run on --ranks
 

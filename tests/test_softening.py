@@ -22,6 +22,15 @@ def mpi():
     check(d < 1e-6, "peak load 1 rank %.9f N, 2 ranks %.9f N, relative difference %.2e < 1e-6" % (peak(one), peak(two), d))
     b1 = [row["broken_bonds"] for row in one.curve]
     check(b1 == [row["broken_bonds"] for row in two.curve], "broken bonds per step identical")
+    # GAMG, whose Galerkin products on two ranks use the all-at-once algorithm unless told otherwise
+    # (src/solve/static.c): the same curve
+    one = run("gregoire_d50_hn", *HN, *tight, "-pc_type", "gamg")
+    two = run("gregoire_d50_hn", *HN, *tight, "-pc_type", "gamg", ranks=2)
+    via = [r.summary["galerkin_product"] for r in (one, two)]
+    check(via == ["default", "allatonce"], "Galerkin products on 1 and 2 ranks: %s" % via)
+    d = rel(peak(two), peak(one))
+    check(len(one.curve) == len(two.curve) and d < 1e-6, "GAMG: %d and %d increments, peaks %.9f and %.9f N, relative difference %.2e < 1e-6" % (
+        len(one.curve), len(two.curve), peak(one), peak(two), d))
 
 
 def hierarchies(log_view):

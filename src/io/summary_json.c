@@ -238,6 +238,14 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
                          "  \"constrained_dofs\": %" PetscInt_FMT ",\n  \"zero_stiffness_dofs_pinned\": %" PetscInt_FMT
                          ",\n  \"isolated_nodes\": %" PetscInt_FMT ",\n",
                          m->nconstrained, m->nzero_dofs, m->nisolated));
+  {
+    char      via[64] = "default";
+    PetscBool set;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-matptap_via", via, sizeof via, &set));
+    PetscCall(PDEscapeJSON(via, &text));
+    PetscCall(PetscFPrintf(comm, fp, "  \"galerkin_product\": %s,\n", text)); /* GAMG's on several ranks (static.c) */
+    PetscCall(PetscFree(text));
+  }
   PetscCall(PDEscapeJSON(rec->solver, &text));
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"solver\": %s,\n  \"pc_reach\": %.4f,\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT

@@ -13,6 +13,24 @@
    into half of them and doubled the Krylov count (docs/solvers.md) */
 #define PD_GMRES_RESTART 60
 
+/* GAMG's Galerkin products P^T A P on several ranks (the only matrix triple products pdimplicit makes):
+   PETSc's default parallel algorithm keeps intermediate products for a later numeric reuse, and they set the
+   peak memory of a whole run, while a hierarchy rebuilt only when stale (pc_refresh.c) seldom reuses them.
+   The all-at-once algorithm keeps none, at the same wall time (docs/benchmarks/memory.md, rows "default"
+   and "Galerkin products kept for reuse"). A choice on the command line stands; one rank has no such
+   algorithm and needs none. */
+static PetscErrorCode ChooseGalerkinProduct(MPI_Comm comm) {
+  PetscMPIInt size;
+  PetscBool   via, alg;
+
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-matptap_via", &via));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mat_product_algorithm", &alg));
+  if (size > 1 && !via && !alg) PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", "allatonce"));
+  PetscFunctionReturn(0);
+}
+
 /* Krylov method and preconditioner for the stiffness, shared with path following. */
 PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PC pc;
@@ -37,6 +55,7 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
      (SwitchToGAMG) within seconds rather than minutes */
   PetscCall(KSPSetTolerances(ksp, m->linear ? 1e-9 : 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, m->softening ? 2000 : 20000));
   PetscCall(PDInterruptWatchKSP(ksp));
+  PetscCall(ChooseGalerkinProduct(PetscObjectComm((PetscObject)ksp)));
   PetscFunctionReturn(0);
 }
 
