@@ -44,27 +44,25 @@ typedef struct {
   PetscBool       softening;             /* some bond law softens or breaks: bonds carry history */
   PetscBool       gamg_after_icc;        /* ICC(0) failed on the tangent: algebraic multigrid from then on */
   /* per-bond history, allocated only when softening */
-  PetscReal     *kappa;               /* largest stretch reached, committed at accepted steps */
-  unsigned char *level;               /* PDBondLevel the limiter allows the bond to reach */
-  unsigned char *level_n;             /* levels at the last accepted step, to restart a step */
-  PetscBool      own_thresholds;      /* bonds' thresholds differ from their law's (surface correction, scatter,
-                                         crushing): PDModelBondThresholds evaluates them per bond, none are stored */
-  PetscReal *strength;                /* [nbonds] tensile strength over the law's (-pd_strength_scatter), or NULL */
-  PetscReal  onset[PD_MATERIALS_ALL]; /* per material, the smallest min(s0, sc) of its bonds on this rank: a
-                                         bond whose stretch and history stay below it is elastic, and its
-                                         thresholds need not be evaluated */
-  PetscReal     *shift;               /* [nbonds] rise of the thresholds under compression (-pd_fc), or NULL */
-  Vec            dilatation;          /* ghosted nodal dilatation for that rise, or NULL */
-  PetscReal     *stretch;             /* per-bond scratch of the limiter and the history update */
-  unsigned char *branch;              /* path following: per-bond PDBranch frozen for a stage, or NULL */
-  PetscInt       limiter_max;         /* bond events granted per Newton iteration; 0: no cap */
-  PetscReal      pc_reach;            /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
-  PetscBool      commit_history;      /* explicit path: every force evaluation raises kappa */
-  PetscReal     *sp_n;                /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
-  PetscBool     *ruptured_n;          /* [nseg] the segment has broken (committed) */
-  PetscReal     *dissipated_n;        /* [nseg] energy the segment dissipated (J): s_y E A L0 times its accumulated
-                                         plastic stretch, and the elastic energy it held when it broke */
-  PetscInt  *slip_bond;               /* [nslip] the bond-slip links (bars with bond slip) */
+  PetscReal     *kappa;                   /* largest stretch reached, committed at accepted steps */
+  unsigned char *level;                   /* PDBondLevel the limiter allows the bond to reach */
+  unsigned char *level_n;                 /* levels at the last accepted step, to restart a step */
+  PetscReal     *strength;                /* [nbonds] tensile strength over the law's (-pd_strength_scatter), or NULL */
+  PetscReal      onset[PD_MATERIALS_ALL]; /* per material, the smallest min(s0, sc) of its bonds on this rank: a
+                                             bond whose stretch and history stay below it is elastic, and its
+                                             thresholds need not be evaluated */
+  PetscReal     *shift;                   /* [nbonds] rise of the thresholds under compression (-pd_fc), or NULL */
+  Vec            dilatation;              /* ghosted nodal dilatation for that rise, or NULL */
+  PetscReal     *stretch;                 /* per-bond scratch of the limiter and the history update */
+  unsigned char *branch;                  /* path following: per-bond PDBranch frozen for a stage, or NULL */
+  PetscInt       limiter_max;             /* bond events granted per Newton iteration; 0: no cap */
+  PetscReal      pc_reach;                /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
+  PetscBool      commit_history;          /* explicit path: every force evaluation raises kappa */
+  PetscReal     *sp_n;                    /* [nseg] plastic stretch of each bar segment, committed at accepted steps */
+  PetscBool     *ruptured_n;              /* [nseg] the segment has broken (committed) */
+  PetscReal     *dissipated_n;            /* [nseg] energy the segment dissipated (J): s_y E A L0 times its accumulated
+                                             plastic stretch, and the elastic energy it held when it broke */
+  PetscInt  *slip_bond;                   /* [nslip] the bond-slip links (bars with bond slip) */
   PetscInt   nslip;
   PetscInt   yielded;                       /* bar segments with plastic stretch, or broken (global, counted once) */
   PetscInt64 broken;                        /* bonds broken (global, counted once) at the last accepted step */

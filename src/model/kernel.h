@@ -89,7 +89,7 @@ PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
    nominal ones. Evaluated from the nominal ones, not stored (PDLawBondThresholdsScaled). */
 static inline PDLawBond PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
   PDLawBond t;
-  if (!m->own_thresholds) return law->nominal;
+  if (!m->bonds->lambda && !m->strength && !m->shift) return law->nominal;
   PDLawBondThresholdsScaled(law, m->bonds->lambda ? m->bonds->lambda[e] : 1, m->strength ? m->strength[e] : 1, &t);
   if (m->shift) PDLawBondRaise(&t, m->shift[e]);
   return t;

@@ -64,11 +64,8 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, PetscReal reach2, Mat *J) {
   if (m->scene->mat_type[0])
     PetscCall(MatSetType(*J, m->scene->mat_type));
   else {
-    char      pctype[64] = "";
-    PetscBool gamg       = PETSC_FALSE, set;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &set));
-    PetscCall(PetscStrcmp(pctype, PCGAMG, &gamg));
-    if (!set) gamg = PDModelDefaultsToGAMG(m); /* the default of PDSolverConfigureKSP */
+    /* the user's preconditioner, or the default of PDSolverConfigureKSP */
+    const PetscBool gamg = m->scene->pc_chosen ? m->scene->pc_gamg : PDModelDefaultsToGAMG(m);
     PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
   }
   PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));

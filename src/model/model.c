@@ -311,17 +311,18 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
     PetscBool crush  = PETSC_FALSE;
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
-    m->own_thresholds = bd->lambda || sc->strength_scatter > 0 || crush ? PETSC_TRUE : PETSC_FALSE;
     if (sc->strength_scatter > 0) { /* from the bond's global id, so that any rank count draws the same */
       PetscCall(PetscMalloc1(nb, &m->strength));
       for (PetscInt e = 0; e < bd->nbonds; e++) m->strength[e] = 1 + sc->strength_scatter * PDUnitFromId(PDBondGlobalId(lat, bd, e));
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
     }
     for (PetscInt k = 0; k < PD_MATERIALS_ALL; k++) m->onset[k] = PETSC_MAX_REAL;
-    for (PetscInt e = 0; e < bd->nbonds; e++) { /* crushing's rises only raise thresholds: the floor holds */
-      const PDLaw    *law = &m->law[bd->material[e]];
-      const PDLawBond t   = PDModelBondThresholds(m, e, law);
+    /* before crushing's rises exist: they only raise thresholds, so the floor holds */
+    for (PetscInt e = 0; e < bd->nbonds; e++) {
+      const PDLaw *law = &m->law[bd->material[e]];
+      PDLawBond    t;
       if (law->kind == PD_LAW_ELASTIC) continue; /* no threshold at all (bar segments across a notch) */
+      t                         = PDModelBondThresholds(m, e, law);
       m->onset[bd->material[e]] = PetscMin(m->onset[bd->material[e]], PetscMin(t.s0, t.sc));
     }
     if (crush) {

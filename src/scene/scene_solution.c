@@ -63,14 +63,14 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   t             = 0;
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_mat_type", &t, &set));
   if (set) PetscCall(PetscStrncpy(sc->mat_type, PDMatTypes[t], sizeof sc->mat_type));
-  if (set && strcmp(sc->mat_type, "aij")) { /* GAMG in PETSc 3.18 builds its graph from AIJ storage only */
-    char      pctype[64] = "";
-    PetscBool pcset, gamg;
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &pcset));
-    PetscCall(PetscStrcmp(pctype, "gamg", &gamg));
-    PetscCheck(!pcset || !gamg, comm, PETSC_ERR_USER_INPUT, "Option -pd_mat_type: %s storage cannot be preconditioned by -pc_type gamg (AIJ only)",
-               sc->mat_type);
+  {
+    char pctype[64] = "";
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &sc->pc_chosen));
+    PetscCall(PetscStrcmp(pctype, "gamg", &sc->pc_gamg));
   }
+  /* GAMG in PETSc 3.18 builds its graph from AIJ storage only */
+  PetscCheck(!set || !sc->pc_gamg || !strcmp(sc->mat_type, "aij"), comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_mat_type: %s storage cannot be preconditioned by -pc_type gamg (AIJ only)", sc->mat_type);
   sc->dlambda_max = sc->lambda_max / sc->steps;
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dlambda_max", &sc->dlambda_max, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dlambda_min", &sc->dlambda_min, NULL));

@@ -69,11 +69,8 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
    side chosen with -ksp_pc_side keeps GMRES, which takes either. A preconditioner chosen on the command
    line keeps PETSc's side unless -ksp_pc_side says otherwise. Called before the KSP reads its options. */
 PetscErrorCode PDSolverPreferFlexible(PDModel *m, KSP ksp) {
-  PetscBool pc_chosen;
-
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &pc_chosen));
-  if (m->bs == 3 && !pc_chosen) {
+  if (m->bs == 3 && !m->scene->pc_chosen) {
     PC        pc;
     PetscBool gmres, pcok, side_chosen;
     PetscCall(KSPGetPC(ksp, &pc));
@@ -233,7 +230,7 @@ static PetscErrorCode SwitchToGAMG(PDModel *m, SNES snes, JacobianCtx *jctx, Mat
   KSP                ksp;
   PC                 pc;
   KSPConvergedReason kr;
-  PetscBool          bjacobi, chosen;
+  PetscBool          bjacobi;
 
   PetscFunctionBeginUser;
   *retry = PETSC_FALSE;
@@ -241,8 +238,7 @@ static PetscErrorCode SwitchToGAMG(PDModel *m, SNES snes, JacobianCtx *jctx, Mat
   PetscCall(KSPGetConvergedReason(ksp, &kr));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCBJACOBI, &bjacobi));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-pc_type", &chosen));
-  if (!m->softening || !bjacobi || chosen || m->scene->mat_type[0] || kr >= 0) PetscFunctionReturn(0);
+  if (!m->softening || !bjacobi || m->scene->pc_chosen || m->scene->mat_type[0] || kr >= 0) PetscFunctionReturn(0);
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ksp), "  block ICC(0) failed on the tangent (%s): going on with GAMG\n",
                         KSPConvergedReasons[kr]));
   m->gamg_after_icc = PETSC_TRUE;
