@@ -54,6 +54,9 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_fc", "-1"], "-pd_fc"),
     ("gregoire_d50_hn", ["-pd_pc_matrix", "definite"], "-pd_pc_matrix"),
     ("gregoire_d50_hn", ["-pd_mat_type", "baij", "-pc_type", "gamg"], "-pd_mat_type"),  # GAMG reads AIJ only
+    ("gregoire_d50_hn", ["-pd_mat_type", "sbaij", "-pc_type", "lu"], "-pd_mat_type"),  # no LU of symmetric storage
+    ("gregoire_d50_hn", ["-pd_mat_type", "sbaij", "-pc_type", "bjacobi", "-sub_pc_type", "ilu"], "-sub_pc_type ilu"),
+    ("gregoire_d50_hn", ["-pd_mat_type", "baij", "-pc_type", "lu", "-pc_factor_mat_solver_type", "umfpack"], "umfpack"),  # AIJ only
     ("gregoire_d50_hn", ["-pd_pc_reach", "0.5"], "-pd_pc_reach"),  # shorter than the nearest neighbour
     ("gregoire_d50_hn", ["-pd_pc_reach", "2", "-pd_tangent_product", "matrix"], "-pd_pc_reach"),  # the matrix is the operator
     ("cantilever", ["-pd_pc_reach", "2"], "-pd_pc_reach"),  # linear: solved with the assembled matrix

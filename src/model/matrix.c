@@ -64,9 +64,10 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, PetscReal reach2, Mat *J) {
   if (m->scene->mat_type[0])
     PetscCall(MatSetType(*J, m->scene->mat_type));
   else {
-    /* the user's preconditioner, or the default of PDSolverConfigureKSP */
+    /* the user's preconditioner, or the default of PDSolverConfigureKSP; AIJ where the user's choice of
+       preconditioner or package cannot read symmetric block storage (scene_solution.c) */
     const PetscBool gamg = m->scene->pc_chosen ? m->scene->pc_gamg : PDModelDefaultsToGAMG(m);
-    PetscCall(MatSetType(*J, gamg ? MATAIJ : MATSBAIJ));
+    PetscCall(MatSetType(*J, gamg || m->scene->pc_aij ? MATAIJ : MATSBAIJ));
   }
   PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));
   for (PetscInt i = 0; i < lat->nowned; i++) dnnz[i] += onnz[i]; /* blocks per row, for the record */

@@ -4,6 +4,62 @@
 #include "scene_read.h"
 #include "option_values.h"
 
+/* Whether a preconditioner named on the command line can read the block storage mat ("sbaij" or "baij") in
+   PETSc 3.18; where it cannot, the option (and its value) that named it. GAMG builds its graph from AIJ
+   only; symmetric storage has no LU or ILU factorisation and no SOR for blocks; of the factorisation
+   packages only PETSc's own and MUMPS read block storage, and MUMPS factors BAIJ by LU only. (Measured with
+   every preconditioner and package of Debian's PETSc.) */
+typedef struct {
+  char pc[64], sub_pc[64], solver[64], sub_solver[64];
+} PDPCChoice;
+
+static PetscBool BlockStorageReadable(const char *mat, const PDPCChoice *c, const char **option, const char **value) {
+  const PetscBool sym       = strcmp(mat, "sbaij") ? PETSC_FALSE : PETSC_TRUE;
+  const char     *factor[2] = {c->pc, c->sub_pc}, *package[2] = {c->solver, c->sub_solver};
+  const char     *fname[2] = {"-pc_type", "-sub_pc_type"};
+  const char     *pname[2] = {"-pc_factor_mat_solver_type", "-sub_pc_factor_mat_solver_type"};
+
+  *option = fname[0];
+  *value  = c->pc;
+  if (!strcmp(c->pc, "gamg")) return PETSC_FALSE;
+  for (int k = 0; k < 2; k++) {
+    const PetscBool lu = !strcmp(factor[k], "lu") || !strcmp(factor[k], "ilu") ? PETSC_TRUE : PETSC_FALSE;
+    *option            = fname[k];
+    *value             = factor[k];
+    if (sym && (lu || !strcmp(factor[k], "sor"))) return PETSC_FALSE;
+    *option = pname[k];
+    *value  = package[k];
+    if (package[k][0] && strcmp(package[k], "petsc") && strcmp(package[k], "mumps")) return PETSC_FALSE;
+    if (!sym && !strcmp(package[k], "mumps") && !strcmp(factor[k], "cholesky")) return PETSC_FALSE;
+  }
+  return PETSC_TRUE;
+}
+
+/* -pc_type read once, with the scene (matrix.c and static.c ask whether the user chose one, and which), and
+   the stiffness storage it needs: a preconditioner or factorisation package that cannot read the default
+   symmetric block storage gets AIJ, and one that cannot read the storage chosen with -pd_mat_type is bad
+   input, rather than a failure inside the first solve. */
+static PetscErrorCode ReadPreconditionerStorage(MPI_Comm comm, PDScene *sc, PetscBool mat_set) {
+  PDPCChoice  c = {"", "", "", ""};
+  const char *option, *value;
+  PetscMPIInt size;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", c.pc, sizeof c.pc, &sc->pc_chosen));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-sub_pc_type", c.sub_pc, sizeof c.sub_pc, NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_factor_mat_solver_type", c.solver, sizeof c.solver, NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-sub_pc_factor_mat_solver_type", c.sub_solver, sizeof c.sub_solver, NULL));
+  PetscCall(PetscStrcmp(c.pc, "gamg", &sc->pc_gamg));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCheck(size == 1 || (strcmp(c.pc, "ilu") && strcmp(c.pc, "icc")), comm, PETSC_ERR_USER_INPUT,
+             "Option -pc_type: %s has no parallel form in PETSc; on %d ranks use -pc_type bjacobi -sub_pc_type %s", c.pc, size, c.pc);
+  sc->pc_aij = BlockStorageReadable("sbaij", &c, &option, &value) ? PETSC_FALSE : PETSC_TRUE;
+  PetscCheck(!mat_set || !strcmp(sc->mat_type, "aij") || BlockStorageReadable(sc->mat_type, &c, &option, &value), comm,
+             PETSC_ERR_USER_INPUT, "Option -pd_mat_type: %s storage cannot be read by %s %s in this PETSc (use aij)", sc->mat_type, option,
+             value);
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ReadPathFollowing(PetscOptionItems *PetscOptionsObject, MPI_Comm comm, PDScene *sc) {
   PetscInt at = sc->has_cmod ? PD_ARC_CMOD : PD_ARC_CYLINDRICAL, solve = 1;
 
@@ -63,14 +119,7 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   t             = 0;
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_mat_type", &t, &set));
   if (set) PetscCall(PetscStrncpy(sc->mat_type, PDMatTypes[t], sizeof sc->mat_type));
-  {
-    char pctype[64] = "";
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_type", pctype, sizeof pctype, &sc->pc_chosen));
-    PetscCall(PetscStrcmp(pctype, "gamg", &sc->pc_gamg));
-  }
-  /* GAMG in PETSc 3.18 builds its graph from AIJ storage only */
-  PetscCheck(!set || !sc->pc_gamg || !strcmp(sc->mat_type, "aij"), comm, PETSC_ERR_USER_INPUT,
-             "Option -pd_mat_type: %s storage cannot be preconditioned by -pc_type gamg (AIJ only)", sc->mat_type);
+  PetscCall(ReadPreconditionerStorage(comm, sc, set));
   sc->dlambda_max = sc->lambda_max / sc->steps;
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dlambda_max", &sc->dlambda_max, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dlambda_min", &sc->dlambda_min, NULL));

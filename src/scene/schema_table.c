@@ -497,13 +497,14 @@ const PDOptionSpec PDOptionSchema[] = {
     {.name     = "-pd_mat_type",
      .type     = PD_OPTION_ENUM,
      .values   = PDMatTypes,
-     .def_note = "sbaij; aij with GAMG",
+     .def_note = "sbaij; aij with GAMG, LU, ILU",
      .later    = PETSC_TRUE,
      .when     = PD_WHEN_IMPLICIT,
      .help =
          "Stiffness storage. AIJ where GAMG preconditions (-pc_type gamg, and the default preconditioner of 2D scenes and of non-linear "
-         "3D scenes from 10,000 nodes, softening ones from 2,000, docs/solvers.md). Block storage chosen here keeps block Jacobi as "
-         "the default preconditioner (GAMG reads AIJ only; with -pc_type gamg it is bad input)"},
+         "3D scenes from 10,000 nodes, softening ones from 2,000, docs/solvers.md), and where the preconditioner or factorisation "
+         "package chosen cannot read symmetric block storage (LU, ILU, SOR, packages other than PETSc's and MUMPS). Block storage "
+         "chosen here keeps block Jacobi as the default preconditioner; with a preconditioner that cannot read it, it is bad input"},
     {.name = "-pd_assembly_changed_rows",
      .type = PD_OPTION_BOOL,
      .def  = "true",
