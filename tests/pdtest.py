@@ -121,3 +121,12 @@ def check(cond, msg):
 
 def rel(a, b):
     return abs(a - b) / abs(b)
+
+
+def experiment_peaks(name):
+    """Largest loads (N) of the experimental mean, lower and upper curves in data/NAME (rows of CMOD in mm,
+    then mean, min and max load in kN), as benchmarks/common.py reads them."""
+    rows = [l for l in open(os.path.join(ROOT, "data", name)) if not l.startswith("#")][1:]
+    rows = [[float(x) for x in l.split(",")] for l in rows]
+    return tuple(1e3 * max(r[c] for r in rows) for c in (1, 2, 3))
+
