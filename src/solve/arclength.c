@@ -130,11 +130,13 @@ static PetscErrorCode Residual(Arc *a, PetscReal *rnorm, PetscReal *fnorm) {
 
 /* Tangent at u, the preconditioner rebuilt every third assembly, q = -(K u_ref - f_ref) on free dofs, and
    (when asked) the path direction v per unit lambda: K du_II = q, v = du_II + u_ref. */
-static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction, PetscReal rtol) {
-  PDModel *m = a->m;
-  PetscInt n;
+static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction, PetscReal rtol, PetscBool *ok) {
+  PDModel           *m = a->m;
+  PetscInt           n;
+  KSPConvergedReason kr;
 
   PetscFunctionBeginUser;
+  *ok = PETSC_TRUE;
   PetscCall(PDModelJacobian(NULL, a->u, a->J, a->P, m));
   /* an iterative solve absorbs a preconditioner kept from an earlier tangent until it goes stale (as under
      plain control); a direct one (preonly) must factor every time */
@@ -152,7 +154,8 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction, PetscReal
   /* the direction changes little from one solve to the next (damage changes the tangent in a band): the
      last one starts the Krylov solve, whose tolerance stays relative to |q| (KSPConvergedDefaultSetUIRNorm
      in Run), so that the guess saves iterations and not accuracy (-pd_arclength_guess) */
-  if (!a->direct && m->scene->arc_guess) {
+  const PetscBool guess = !a->direct && m->scene->arc_guess ? PETSC_TRUE : PETSC_FALSE;
+  if (guess) {
     PetscCall(VecAXPY(a->v, -1, m->u_ref));
     PetscCall(KSPSetInitialGuessNonzero(a->ksp, PETSC_TRUE));
   }
@@ -160,9 +163,28 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction, PetscReal
   PetscCall(Solve(a, a->q, a->v));
   PetscCall(KSPSetInitialGuessNonzero(a->ksp, PETSC_FALSE));
   PetscCall(KSPGetIterationNumber(a->ksp, &n));
+  PetscCall(KSPGetConvergedReason(a->ksp, &kr));
   a->lits += n;
+  /* the last direction can be a bad guess where the tangent has changed much (a crack that has just
+     freed a fragment): its residual then exceeds the divergence tolerance relative to |q| at once, and
+     the solve stops there, returning the guess. It is solved again from zero */
+  if (guess && kr < 0 && kr != KSP_DIVERGED_ITS) {
+    PetscCall(PetscInfo(NULL, "arclength: direction from the last one %s; solved again from zero\n", KSPConvergedReasons[kr]));
+    PetscCall(VecZeroEntries(a->v));
+    PetscCall(Solve(a, a->q, a->v));
+    PetscCall(KSPGetIterationNumber(a->ksp, &n));
+    PetscCall(KSPGetConvergedReason(a->ksp, &kr));
+    a->lits += n;
+  }
   PetscCall(VecAXPY(a->v, 1, m->u_ref));
   PetscCall(VecNorm(a->v, NORM_2, &a->vnorm));
+  /* a solve that broke down or met a non-finite value leaves no direction (a factor's blown-up pivot
+     carried into the iterate left its residual not finite): the step is cut. One that ran out of
+     iterations still gives an approximate direction, which the bordered corrections put right. */
+  if ((kr < 0 && kr != KSP_DIVERGED_ITS) || PetscIsInfOrNanReal(a->vnorm)) {
+    a->why = kr < 0 ? KSPConvergedReasons[kr] : "direction not finite";
+    *ok    = PETSC_FALSE;
+  }
   PetscFunctionReturn(0);
 }
 
@@ -361,7 +383,8 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam = p->lambda_n;
   PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
-  PetscCall(TangentAndDirection(a, PETSC_TRUE, aug && a->matched ? PetscMax(a->rtol, PD_DIRECTION_RTOL) : a->rtol));
+  PetscCall(TangentAndDirection(a, PETSC_TRUE, aug && a->matched ? PetscMax(a->rtol, PD_DIRECTION_RTOL) : a->rtol, &fine));
+  if (!fine) PetscFunctionReturn(0);
   PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
   a->why = "no predictor meets the constraint";
   if (!fine) PetscFunctionReturn(0);
@@ -446,7 +469,8 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     a->why = "Newton cycles with halved updates";
     if (damp < 1 && m->scene->arc_halved_its > 0 && ++damped > m->scene->arc_halved_its) PetscFunctionReturn(0);
     /* plain control (dlambda = 0) and the augmented solve need no direction */
-    PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug, a->rtol));
+    PetscCall(TangentAndDirection(a, type != ARC_LOAD && !aug, a->rtol, &fine));
+    if (!fine) PetscFunctionReturn(0);
     PetscCall(VecScale(a->R, -1));
     if (aug) {
       /* an IMPL-EX step's first correction takes up the forces its extrapolated damage releases, which move
