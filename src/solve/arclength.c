@@ -178,9 +178,9 @@ static PetscErrorCode TangentAndDirection(Arc *a, PetscBool direction, PetscReal
   }
   PetscCall(VecAXPY(a->v, 1, m->u_ref));
   PetscCall(VecNorm(a->v, NORM_2, &a->vnorm));
-  /* a solve that broke down or met a non-finite value leaves no direction (a factor's blown-up pivot
-     carried into the iterate left its residual not finite): the step is cut. One that ran out of
-     iterations still gives an approximate direction, which the bordered corrections put right. */
+  /* a solve that broke down or met a non-finite value leaves no direction (taken as one, a failed solve's
+     left-over guess led steps later to a residual that was not finite): the step is cut. One that ran out
+     of iterations still gives an approximate direction, which the bordered corrections put right. */
   if ((kr < 0 && kr != KSP_DIVERGED_ITS) || PetscIsInfOrNanReal(a->vnorm)) {
     a->why = kr < 0 ? KSPConvergedReasons[kr] : "direction not finite";
     *ok    = PETSC_FALSE;
