@@ -208,7 +208,6 @@ typedef struct {
   PetscBool        dry_run;     /* build the scene and report it, do not solve */
   char             mat_type[8]; /* stiffness storage (-pd_mat_type), or empty for the default */
   PetscBool        pc_chosen;   /* -pc_type given: the user's preconditioner stands (read once, with the scene) */
-  PetscBool        pc_gamg;     /* and it is GAMG, which needs AIJ storage */
   PetscBool        pc_aij;      /* the preconditioner or factorisation package chosen cannot read symmetric block storage */
   /* explicit path (-pd_mode explicit) */
   PetscBool explicit_mode;

@@ -64,10 +64,10 @@ PetscErrorCode PDModelCreateMatrix(PDModel *m, PetscReal reach2, Mat *J) {
   if (m->scene->mat_type[0])
     PetscCall(MatSetType(*J, m->scene->mat_type));
   else {
-    /* the user's preconditioner, or the default of PDSolverConfigureKSP; AIJ where the user's choice of
-       preconditioner or package cannot read symmetric block storage (scene_solution.c) */
-    const PetscBool gamg = m->scene->pc_chosen ? m->scene->pc_gamg : PDModelDefaultsToGAMG(m);
-    PetscCall(MatSetType(*J, gamg || m->scene->pc_aij ? MATAIJ : MATSBAIJ));
+    /* AIJ where the user's preconditioner or package cannot read symmetric block storage (GAMG among them,
+       scene_solution.c), or where the default of PDSolverConfigureKSP is GAMG */
+    const PetscBool aij = m->scene->pc_aij || (!m->scene->pc_chosen && PDModelDefaultsToGAMG(m)) ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(MatSetType(*J, aij ? MATAIJ : MATSBAIJ));
   }
   PetscCall(MatXAIJSetPreallocation(*J, bs, dnnz, onnz, dnnzu, onnzu));
   for (PetscInt i = 0; i < lat->nowned; i++) dnnz[i] += onnz[i]; /* blocks per row, for the record */

@@ -49,7 +49,6 @@ static PetscErrorCode ReadPreconditionerStorage(MPI_Comm comm, PDScene *sc, Pets
   PetscCall(PetscOptionsGetString(NULL, NULL, "-sub_pc_type", c.sub_pc, sizeof c.sub_pc, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_factor_mat_solver_type", c.solver, sizeof c.solver, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-sub_pc_factor_mat_solver_type", c.sub_solver, sizeof c.sub_solver, NULL));
-  PetscCall(PetscStrcmp(c.pc, "gamg", &sc->pc_gamg));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCheck(size == 1 || (strcmp(c.pc, "ilu") && strcmp(c.pc, "icc")), comm, PETSC_ERR_USER_INPUT,
              "Option -pc_type: %s has no parallel form in PETSc; on %d ranks use -pc_type bjacobi -sub_pc_type %s", c.pc, size, c.pc);
