@@ -161,6 +161,7 @@ typedef struct {
   PetscReal        arc_growth;     /* largest arc length over the first one */
   PetscInt         arc_target_its; /* Newton iterations per step the adaptive arc length aims at */
   PetscReal        arc_rtol;       /* equilibrium: |residual| below this times |f_int|; 0: the path's default */
+  PetscBool        arc_secant;     /* an IMPL-EX step under the augmented corrector starts from the last step, not a direction solve */
   PetscBool        arc_guess;      /* the path direction's Krylov solve starts from the last direction */
   PetscInt         arc_halved_its; /* halved Newton updates allowed before a step is cut; 0: the whole budget */
   PetscInt         arc_hold;       /* accepted steps after a cut during which the arc length does not grow */

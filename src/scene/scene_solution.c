@@ -76,6 +76,11 @@ static PetscErrorCode ReadPathFollowing(PetscOptionItems *PetscOptionsObject, MP
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_arclength_hold", &sc->arc_hold, NULL));
   sc->arc_rtol = 0; /* worked out by the path: PD_ARC_RTOL, or PD_IMPLEX_RTOL for IMPL-EX steps */
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_rtol", &sc->arc_rtol, NULL));
+  {
+    PetscInt predictor = 1;
+    PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_arclength_predictor", &predictor, NULL));
+    sc->arc_secant = predictor == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   sc->arc_guess = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_arclength_guess", &sc->arc_guess, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_arclength_implex", &sc->arc_implex, NULL));

@@ -2,11 +2,12 @@
    table and -help are generated from here (scripts/readme_options.py, -pd_help_markdown). */
 #include "schema.h"
 
-static const char *const Forms[]  = {"zaccariotto", "bobaru", NULL};
-static const char *const Solves[] = {"bordering", "augmented", NULL};
-static const char *const Axes[]   = {"x", "y", "z", NULL};
-static const char *const Bonds[]  = {"concrete", "perfect", "slip", NULL};
-static const char *const Nodes[]  = {"concrete", "bars", NULL};
+static const char *const Forms[]      = {"zaccariotto", "bobaru", NULL};
+static const char *const Solves[]     = {"bordering", "augmented", NULL};
+static const char *const Predictors[] = {"tangent", "secant", NULL};
+static const char *const Axes[]       = {"x", "y", "z", NULL};
+static const char *const Bonds[]      = {"concrete", "perfect", "slip", NULL};
+static const char *const Nodes[]      = {"concrete", "bars", NULL};
 
 #define MAT PD_FAMILY_MATERIAL
 #define NOTCH PD_FAMILY_NOTCH
@@ -631,6 +632,14 @@ const PDOptionSpec PDOptionSchema[] = {
      .when = PD_WHEN_PATH,
      .help = "Start each iterative solve for the path direction from the last direction, and an IMPL-EX step's first correction "
              "from the last step's; false: from zero (docs/arclength.md)"},
+    {.name   = "-pd_arclength_predictor",
+     .type   = PD_OPTION_ENUM,
+     .values = Predictors,
+     .def    = "secant",
+     .when   = PD_WHEN_PATH_LINEAR,
+     .help   = "How an IMPL-EX step under the augmented corrector starts: secant (the last step extrapolated; no solve) or tangent (a "
+               "solve for the path direction with the step's tangent). Implicit steps and the first IMPL-EX step always solve for the "
+               "direction (docs/arclength.md)"},
     {.name     = "-pd_arclength_rtol",
      .type     = PD_OPTION_REAL,
      .def_note = "1e-7; 1e-5 for IMPL-EX steps",

@@ -83,6 +83,7 @@ typedef struct {
   PetscInt    rejects;      /* IMPL-EX steps made again shorter since the last accepted one */
   PetscBool   root_flipped; /* this step is being taken again with the predictor's other root */
   PetscReal   dlam_pred;    /* the load-factor change of the step's predictor */
+  PetscReal   dlam_last;    /* the load-factor change of the last accepted step (with dprev: the secant predictor) */
   Reversal    rev;          /* load reversal; while unloading (phase 1) the cmod gauge closes */
   PetscBool   turn;         /* the next predictor goes against the last step (load reversal) */
   const char *why;          /* why the last step failed */
@@ -366,6 +367,16 @@ static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
   PetscFunctionReturn(0);
 }
 
+/* Whether a step starts from the last one (-pd_arclength_predictor secant): an IMPL-EX step under the
+   augmented corrector, with a last step to scale and a direction solved for earlier (its Schur estimate),
+   and not while a load reversal turns the path. */
+static PetscBool SecantPredictor(const Arc *a, PetscInt type, PetscBool aug) {
+  return a->m->scene->arc_secant && a->kx_n && aug && type != ARC_LOAD && a->have_prev && a->len_prev > 0 && a->vnorm > 0 && !a->turn &&
+                 a->rev.phase != 1 && a->rev.phase != 2
+             ? PETSC_TRUE
+             : PETSC_FALSE;
+}
+
 /* One step of length dl: predictor along v, then bordered Newton corrections until equilibrium holds,
    the constraint is met and the limiter has no event left. */
 static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, PetscInt *max_events, PetscBool *ok) {
@@ -382,13 +393,23 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   if (a->kx_n) PetscCall(ImplexExtrapolate(a, a->len_prev > 0 ? dl / a->len_prev : 0));
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam = p->lambda_n;
-  PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
-  PetscCall(TangentAndDirection(a, PETSC_TRUE, aug && a->matched ? PetscMax(a->rtol, PD_DIRECTION_RTOL) : a->rtol, &fine));
-  if (!fine) PetscFunctionReturn(0);
-  PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
-  a->why = "no predictor meets the constraint";
-  if (!fine) PetscFunctionReturn(0);
-  PetscCall(VecAXPY(a->u, dlam, a->v));
+  if (SecantPredictor(a, type, aug)) {
+    /* an IMPL-EX step is a linear problem (secant, its damage fixed by the extrapolation), which the
+       augmented corrector solves for u and lambda together: a direction solve would only start it. The
+       last step, scaled to this one's length, starts it instead; the Schur estimate of the corrector's
+       preconditioner stays that of the last direction solved for (docs/arclength.md, "The secant predictor") */
+    const PetscReal r = dl / a->len_prev;
+    dlam              = r * a->dlam_last;
+    PetscCall(VecAXPY(a->u, r, a->dprev));
+  } else {
+    PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
+    PetscCall(TangentAndDirection(a, PETSC_TRUE, aug && a->matched ? PetscMax(a->rtol, PD_DIRECTION_RTOL) : a->rtol, &fine));
+    if (!fine) PetscFunctionReturn(0);
+    PetscCall(ConstraintUpdate(a, p, type, dl, PETSC_TRUE, &dlam, &fine));
+    a->why = "no predictor meets the constraint";
+    if (!fine) PetscFunctionReturn(0);
+    PetscCall(VecAXPY(a->u, dlam, a->v));
+  }
   a->lam += dlam;
   a->dlam_pred = dlam;
   /* the iteration budget restarts whenever the limiter grants events: settling a band of bonds that
@@ -660,6 +681,10 @@ static PetscErrorCode ReadCheckpoint(Arc *a, PDPath *p, PDRecord *rec) {
   PetscCall(PDCheckpointRead(m, rec, m->scene->restart, NSTATE_VECS, vec, state_vec_names, NSTATE, state_names, a->state, a->kx_prev));
   UnpackState(a, p);
   PetscCall(VecCopy(a->v_n, a->v));
+  PetscCall(VecNorm(a->v, NORM_2, &a->vnorm));
+  /* the last step's load-factor change, as the run that wrote the checkpoint had it (the curve's rows are
+     stored exactly) */
+  if (rec->nrows > 1) a->dlam_last = rec->rows[rec->nrows - 1].lambda - rec->rows[rec->nrows - 2].lambda;
   m->lambda = p->lambda_n;
   PetscCall(PDPCRefreshRequest(&a->refresh)); /* a fresh preconditioner, as the run that wrote it had at its start */
   PetscCall(PetscInfo(NULL, "path following goes on from %s at step %" PetscInt_FMT ", load factor %g\n", m->scene->restart, p->step,
@@ -682,6 +707,7 @@ static PetscErrorCode TakeOver(Arc *a, PDPath *p, const PDPath *from, PetscReal 
   PetscCall(VecCopy(from->f_n, p->f_n));
   PetscCall(VecCopy(from->du, a->dprev));
   p->lambda_n  = from->lambda_n;
+  a->dlam_last = dlam_last;
   p->w_ext     = from->w_ext;
   p->step      = from->step;
   m->lambda    = p->lambda_n;
@@ -893,6 +919,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     }
     rec->max_events_per_its = PetscMax(rec->max_events_per_its, max_events);
     PetscCall(VecWAXPY(a.dprev, -1, u_prev, path.u_n));
+    a.dlam_last = path.lambda_n - lam_prev;
     a.have_prev = PETSC_TRUE;
     /* the first step sets the arc length; under auto (and for the dissipation constraint) plain control
        hands over once a bond softens */
