@@ -284,26 +284,29 @@ def implex():
     check(rel(p1, p0) < rel(p2, p0), "the smaller error per step is closer: %.2f %% against %.2f %% at 0.1" % (100 * rel(p1, p0), 100 * rel(p2, p0)))
     d0, d1 = at_fraction(ref, 0.05), at_fraction(fine, 0.05)
     check(rel(d1, d0) < 0.02, "IMPL-EX 0.01: dissipated at 5 %% of the peak %.4f J within 2 %% of the reference %.4f J" % (d1, d0))
-    # IMPL-EX steps stop at equilibrium to 1e-5 of |f_int|, implicit ones at 1e-7: a step's error is its
+    # IMPL-EX steps stop at equilibrium to 1e-4 of |f_int|, implicit ones at 1e-7: a step's error is its
     # extrapolation's, and equilibrium to 1e-7 gives the same curve (peak and dissipation apart by orders of
     # magnitude less than the tolerances here)
     tight = run(HN2D, *opts, "-pd_arclength_implex", "0.01", "-pd_arclength_rtol", "1e-7")
-    for r, want in ((fine, 1e-5), (tight, 1e-7)):
+    for r, want in ((fine, 1e-4), (tight, 1e-7)):
         got = r.summary["equilibrium_rtol"]["implex_steps"]
         check(got == want, "summary.json reports IMPL-EX steps in equilibrium to %g (%g)" % (want, got))
     # an IMPL-EX step starts from the last one scaled (-pd_arclength_predictor secant, the default) rather than
     # from a direction solve: the augmented corrector solves the step's linear problem either way, so the
     # peak is that of the tangent predictor to the equilibrium tolerance and the dissipation to the 0.2 %
-    # below (measured 4e-6, and 0.11 % RMS of the curve, whose steps the adaptive arc length places a little
-    # differently), for fewer Krylov iterations (measured 2,938 against 4,360)
+    # below (measured 1.2e-5), for fewer Krylov iterations (measured 2,058 against 3,300)
     tangent = run(HN2D, *opts, "-pd_arclength_implex", "0.01", "-pd_arclength_predictor", "tangent")
     # and with the tangent predictor, the Krylov solves of the path direction and of a step's first
-    # correction start from the last ones (-pd_arclength_guess): fewer iterations (measured 4,360 against
-    # 7,703), the same curve to the equilibrium tolerance (peaks 1e-5 apart)
+    # correction start from the last ones (-pd_arclength_guess): fewer iterations (measured 3,300 against
+    # 6,677), the same curve to the equilibrium tolerance
     noguess = run(HN2D, *opts, "-pd_arclength_implex", "0.01", "-pd_arclength_predictor", "tangent", "-pd_arclength_guess", "false")
-    for name, r in (("equilibrium to 1e-7", tight), ("the tangent predictor", tangent), ("the tangent predictor, solves from zero", noguess)):
+    # Peaks within 1e-4 of the tighter equilibrium (measured 3e-7); runs that start their steps' solves
+    # elsewhere stop at other points within the equilibrium tolerance of 1e-4, so their peaks agree to a few
+    # times that (measured 1.2e-5 and 1.6e-4): 5e-4
+    for name, r, tol in (("equilibrium to 1e-7", tight, 1e-4), ("the tangent predictor", tangent, 5e-4),
+                         ("the tangent predictor, solves from zero", noguess, 5e-4)):
         pt, dt = r.summary["peak_load_N"], at_fraction(r, 0.05)
-        check(rel(p1, pt) < 1e-4, "IMPL-EX 0.01: peak %.3f N within 1e-4 of %.3f N with %s" % (p1, pt, name))
+        check(rel(p1, pt) < tol, "IMPL-EX 0.01: peak %.3f N within %g of %.3f N with %s" % (p1, tol, pt, name))
         check(rel(d1, dt) < 2e-3, "IMPL-EX 0.01: dissipated at 5 %% of the peak %.5f J within 0.2 %% of %.5f J with %s" % (d1, dt, name))
     k1, kt, k0 = fine.summary["ksp_its"], tangent.summary["ksp_its"], noguess.summary["ksp_its"]
     check(kt < 0.8 * k0, "the guesses save Krylov iterations: %d against %d from zero" % (kt, k0))

@@ -642,7 +642,7 @@ const PDOptionSpec PDOptionSchema[] = {
                "direction (docs/arclength.md)"},
     {.name     = "-pd_arclength_rtol",
      .type     = PD_OPTION_REAL,
-     .def_note = "1e-7; 1e-5 for IMPL-EX steps",
+     .def_note = "1e-7; 1e-4 for IMPL-EX steps",
      .later    = PETSC_TRUE,
      .range    = "(0, 1)",
      .when     = PD_WHEN_PATH,

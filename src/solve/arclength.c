@@ -36,7 +36,7 @@ typedef struct {
    an IMPL-EX step is a secant problem whose error is the extrapolation's, which a looser equilibrium
    hardly changes while its corrector solve stops decades sooner (docs/arclength.md, "Linear tolerances") */
 #define PD_ARC_RTOL 1e-7
-#define PD_IMPLEX_RTOL 1e-5
+#define PD_IMPLEX_RTOL 1e-4
 static PetscReal EquilibriumRtol(const PDScene *sc, PetscBool implex) {
   return sc->arc_rtol > 0 ? sc->arc_rtol : (implex ? PD_IMPLEX_RTOL : PD_ARC_RTOL);
 }
