@@ -11,8 +11,8 @@ every 25 steps too). Its output stays in $PDSIZE_WORK (default /tmp/pdsize_work)
 the checkpoints of the selected runs that were interrupted, one leg of at most --timeout each, and the
 stored result then covers all legs (CPU and wall time summed). --ranks N runs each leg under mpiexec on
 N ranks (a leg may go on from a checkpoint on another number of ranks; it retraces the path). The stored
-IMPL-EX runs were made with IMPL-EX steps in equilibrium to 1e-7 (before design note 50); a leg resumed
-now goes on at today's 1e-5 (summary.json's equilibrium_rtol says which).
+IMPL-EX runs were made with IMPL-EX steps in equilibrium to 1e-7 (before design note 50) or 1e-5 (before
+note 63); a leg resumed now goes on at today's 1e-4 (summary.json's equilibrium_rtol says which).
 
 Usage: benchmarks/size_effect.py [--jobs 2] [--ranks 1] [--dx 5e-3,10e-3] [--sizes 50,100,200,400] [--timeout 7200]
        [--dim 3|2] [--implex TOL] [--resume] [--report]     (--report only rewrites the tables and plot)
