@@ -8,11 +8,11 @@ traced on the explicit path with a ramp slow enough that the kinetic energy stay
 (-pd_load_region 2,3), twice the left one's where it listed that one only (the beams run before the list existed).
 Writes docs/benchmarks/stuttgart.json, stuttgart.md and stuttgart.png.
 
-The same scenes are traced by path following (`path BEAM ...`): arc length with IMPL-EX steps and the default
-linear solver, stopped once the load has fallen below half its peak (a failure by the criterion above; a cracking beam loses more than 10 % of its load in single steps long before); these
+The same scenes are traced by path following (`path [--direct] BEAM ...`): arc length with IMPL-EX steps and the
+default linear solver (GAMG), or with --direct a MUMPS factor of every tangent (null pivots detected), stopped once the load has fallen below half its peak (a failure by the criterion above; a cracking beam loses more than 10 % of its load in single steps long before); these
 runs go to the list `path_following` of the same file.
 
-Usage: benchmarks/stuttgart.py [--report | implicit | BEAM ... | path BEAM ...]   (BEAM: numbers to run, keeping the others'
+Usage: benchmarks/stuttgart.py [--report | implicit | BEAM ... | path [--direct] BEAM ...]   (BEAM: numbers to run, keeping the others'
 results; by default every beam but 10; implicit: how far the default implicit path gets on beam 3 in ten minutes)
 """
 import json
@@ -45,9 +45,13 @@ NOT_BY_DEFAULT = (10,)
 
 
 # path following: IMPL-EX's damage error per step, as on the 3D Gregoire beams, and the stop once the member has
-# failed. The solver is the default (GAMG): a factored tangent (-ksp_type gmres -pc_type cholesky) is faster per
-# step, but on beam 3 it broke down before the peak, where a crack had left the tangent singular
+# failed. The solver is the default (GAMG) unless --direct: PETSc's own Cholesky factor is faster per step, but on
+# beam 3 it broke down before the peak, where a crack had left the tangent singular; MUMPS's null-pivot detection
+# gets through there
 PATH_OPTIONS = ["-pd_control", "arclength", "-pd_arclength_implex", "0.03", "-pd_stop_fraction", "0.5"]
+# `path --direct`: a MUMPS factor of every tangent, its null pivots detected (ICNTL(24)), so that a fragment a
+# crack has freed is held where it is instead of breaking the factorisation (docs/reinforcement.md)
+DIRECT_OPTIONS = ["-ksp_type", "preonly", "-pc_type", "cholesky", "-pc_factor_mat_solver_type", "mumps", "-mat_mumps_icntl_24", "1"]
 PATH_LIMIT = 3600  # s: the issue's budget per beam
 
 
@@ -59,11 +63,11 @@ def load_factor(summary):
 P_FROM = {1: "both load points", 2: "twice the left load point's"}  # a run's record of where its P came from
 
 
-def measure(beams, path=False):
+def measure(beams, path=False, direct=False):
     for n in beams or [b for b in TABLE if b not in NOT_BY_DEFAULT]:
         out = tempfile.mkdtemp(prefix="pdbench_")
         if path:
-            extra = ["-pd_lambda_max", "%g" % (TRAVEL[n] / 0.02), *PATH_OPTIONS]
+            extra = ["-pd_lambda_max", "%g" % (TRAVEL[n] / 0.02), *PATH_OPTIONS, *(DIRECT_OPTIONS if direct else [])]
         else:
             extra = ["-pd_mode", "explicit", "-pd_lambda_max", "%g" % (TRAVEL[n] / 0.02), "-pd_ramp_time", "%g" % (TRAVEL[n] / RATE)]
         with open(os.path.join(out, "log"), "w") as log:
@@ -166,19 +170,21 @@ def report():
     perr, pmodes = [], 0
     if path:
         lines += ["", "## Path following", "",
-                  "The same scenes traced by arc length with IMPL-EX steps (`benchmarks/stuttgart.py path BEAM`: damage error 0.03 per "
-                  "step, the default linear solver, stopped once the load fell below half its peak or after %d s). Mode and deflection "
-                  "as above; the path may turn back in deflection after the peak (snap-back)." % PATH_LIMIT, "",
+                  "The same scenes traced by arc length with IMPL-EX steps (`benchmarks/stuttgart.py path [--direct] BEAM`: damage error "
+                  "0.03 per step, stopped once the load fell below half its peak or after %d s). Solver: the default linear solver "
+                  "(GAMG), or with `--direct` a MUMPS factor of every tangent with its null pivots detected (`%s`). Mode and deflection "
+                  "as above; the path may turn back in deflection after the peak (snap-back)." % (PATH_LIMIT, " ".join(DIRECT_OPTIONS)), "",
                   "| beam | a_v/d | experiment P (kN), mode | pdimplicit P (kN), error, mode | explicit P (kN) | deflection (mm) | steel stress at the peak (MPa) "
-                  "| steps / Newton / Krylov | CPU (s) | wall (s) | end | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| solver | steps / Newton / Krylov | CPU (s) | wall (s) | end | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for n, r in sorted(path.items()):
             exps, mode = TABLE[n][0], TABLE[n][1]
             e = sum(exps) / len(exps)
             perr.append(abs(r["peak_kN"] / e - 1))
             pmodes += r["mode"] == mode
-            lines.append("| %d | %g | %.0f, %s | %.0f, %s, %s | %s | %.2f | %.0f | %d / %d / %d | %s | %s | %s | %s |" % (
+            lines.append("| %d | %g | %.0f, %s | %.0f, %s, %s | %s | %.2f | %.0f | %s | %d / %d / %d | %s | %s | %s | %s |" % (
                 n, AVD[n], e, mode, r["peak_kN"], err(r["peak_kN"], e), r["mode"], "%.0f" % done[n]["peak_kN"] if n in done else "-",
-                1e3 * r["disp_at_peak_m"], r["steel_stress_at_peak_Pa"] / 1e6, r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["wall_s"],
+                1e3 * r["disp_at_peak_m"], r["steel_stress_at_peak_Pa"] / 1e6,
+                "MUMPS, null pivots" if "-mat_mumps_icntl_24" in r["options"] else "GAMG", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["wall_s"],
                 r["status"].split(":")[0], r["commit"]))
     lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit, explicit | pdimplicit, path following |", "|---|---|---|---|---|",
               "| beams | %d | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done), len(path)),
@@ -214,7 +220,7 @@ if __name__ == "__main__":
     if sys.argv[1:] == ["implicit"]:
         probe_implicit()
     elif sys.argv[1:2] == ["path"]:
-        measure([int(a) for a in sys.argv[2:]], path=True)
+        measure([int(a) for a in sys.argv[2:] if a != "--direct"], path=True, direct="--direct" in sys.argv[2:])
     elif "--report" not in sys.argv[1:]:
         measure([int(a) for a in sys.argv[1:]])
     report()
