@@ -31,6 +31,23 @@ static PetscErrorCode ChooseGalerkinProduct(MPI_Comm comm) {
   PetscFunctionReturn(0);
 }
 
+/* A MUMPS factor of a softening model's tangent detects null pivots (ICNTL(24)) unless the command line
+   says otherwise: a crack that frees a fragment (nodes whose bonds to the rest have all broken) leaves the
+   tangent singular in the fragment's rigid-body modes, and MUMPS then fixes those modes in the correction
+   instead of failing (docs/reinforcement.md, "A factored tangent"). Set only where MUMPS is named, so
+   that no option goes unused. */
+static PetscErrorCode ChooseNullPivots(const PDModel *m) {
+  char      pkg[64] = "";
+  PetscBool named, mumps, given;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-pc_factor_mat_solver_type", pkg, sizeof pkg, &named));
+  PetscCall(PetscStrcmp(pkg, MATSOLVERMUMPS, &mumps));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mat_mumps_icntl_24", &given));
+  if (m->softening && named && mumps && !given) PetscCall(PetscOptionsSetValue(NULL, "-mat_mumps_icntl_24", "1"));
+  PetscFunctionReturn(0);
+}
+
 /* Krylov method and preconditioner for the stiffness, shared with path following. */
 PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PC pc;
@@ -56,6 +73,7 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
   PetscCall(KSPSetTolerances(ksp, m->linear ? 1e-9 : 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, m->softening ? 2000 : 20000));
   PetscCall(PDInterruptWatchKSP(ksp));
   PetscCall(ChooseGalerkinProduct(PetscObjectComm((PetscObject)ksp)));
+  PetscCall(ChooseNullPivots(m));
   PetscFunctionReturn(0);
 }
 
