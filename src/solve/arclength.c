@@ -84,6 +84,8 @@ typedef struct {
   PetscBool   root_flipped; /* this step is being taken again with the predictor's other root */
   PetscReal   dlam_pred;    /* the load-factor change of the step's predictor */
   PetscReal   dlam_last;    /* the load-factor change of the last accepted step (with dprev: the secant predictor) */
+  PetscBool   secant;       /* this step started from the secant predictor */
+  PetscBool   secant_off;   /* a step so started failed: the next attempt solves for the direction */
   Reversal    rev;          /* load reversal; while unloading (phase 1) the cmod gauge closes */
   PetscBool   turn;         /* the next predictor goes against the last step (load reversal) */
   const char *why;          /* why the last step failed */
@@ -369,10 +371,11 @@ static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
 
 /* Whether a step starts from the last one (-pd_arclength_predictor secant): an IMPL-EX step under the
    augmented corrector, with a last step to scale and a direction solved for earlier (its Schur estimate),
-   and not while a load reversal turns the path. */
+   not while a load reversal turns the path, and not again for a step that failed from it (Run takes it
+   again at the same length from the tangent predictor before it cuts it). */
 static PetscBool SecantPredictor(const Arc *a, PetscInt type, PetscBool aug) {
-  return a->m->scene->arc_secant && a->kx_n && aug && type != ARC_LOAD && a->have_prev && a->len_prev > 0 && a->vnorm > 0 && !a->turn &&
-                 a->rev.phase != 1 && a->rev.phase != 2
+  return a->m->scene->arc_secant && !a->secant_off && a->kx_n && aug && type != ARC_LOAD && a->have_prev && a->len_prev > 0 &&
+                 a->vnorm > 0 && !a->turn && a->rev.phase != 1 && a->rev.phase != 2
              ? PETSC_TRUE
              : PETSC_FALSE;
 }
@@ -392,8 +395,9 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   a->lits = 0;
   if (a->kx_n) PetscCall(ImplexExtrapolate(a, a->len_prev > 0 ? dl / a->len_prev : 0));
   PetscCall(VecCopy(p->u_n, a->u));
-  a->lam = p->lambda_n;
-  if (SecantPredictor(a, type, aug)) {
+  a->lam    = p->lambda_n;
+  a->secant = SecantPredictor(a, type, aug);
+  if (a->secant) {
     /* an IMPL-EX step is a linear problem (secant, its damage fixed by the extrapolation), which the
        augmented corrector solves for u and lambda together: a direction solve would only start it. The
        last step, scaled to this one's length, starts it instead; the Schur estimate of the corrector's
@@ -844,6 +848,10 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
       if (a.kx_n) PetscCall(PetscArraycpy(m->kappa, a.kx_n, m->bonds->nbonds));
       PetscCall(PDStopInsideStep(rec, &stop));
       if (stop) break;
+      if (a.secant) { /* before the step is cut, the same length from the tangent predictor */
+        a.secant_off = PETSC_TRUE;
+        continue;
+      }
       if (from && !a.kx_n && a.type != ARC_LOAD && a.dl * 0.5 < 1e-6 * a.dl0) {
         /* the fallback goes on: where Newton cannot settle which softened bonds load and which unload (a
            whole ligament at its peak stress), IMPL-EX needs no such decision */
@@ -907,6 +915,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
       }
     }
     a.root_flipped = PETSC_FALSE;
+    a.secant_off   = PETSC_FALSE;
     if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
