@@ -17,6 +17,14 @@ RESULTS_DIR = os.path.join(ROOT, "docs", "benchmarks")
 OUT = os.environ.get("PD_REPORT_DIR", RESULTS_DIR)
 # Open MPI refuses to start as root without these (CI runs as root)
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+# the BLAS/LAPACK libraries of Debian's alternatives, as LD_LIBRARY_PATH chooses them for one run
+BLAS_DIRS = {"netlib": "/usr/lib/x86_64-linux-gnu/blas:/usr/lib/x86_64-linux-gnu/lapack",
+             "openblas": "/usr/lib/x86_64-linux-gnu/openblas-serial"}
+
+
+def system_blas():
+    """Which BLAS a run gets without LD_LIBRARY_PATH: where Debian's libblas.so.3 alternative points."""
+    return "openblas" if "openblas" in os.path.realpath("/usr/lib/x86_64-linux-gnu/libblas.so.3") else "netlib"
 
 
 def curve_rows(outdir):

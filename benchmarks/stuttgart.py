@@ -22,7 +22,7 @@ import subprocess
 import sys
 import tempfile
 
-from common import curve_rows, EXE, RESULTS_DIR, ROOT, run_timed, save_results, load_results, pyplot, save_figure, write_lines
+from common import system_blas, curve_rows, EXE, RESULTS_DIR, ROOT, run_timed, save_results, load_results, pyplot, save_figure, write_lines
 
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from stuttgart_scenes import BEAMS  # noqa: E402
@@ -52,7 +52,8 @@ PATH_OPTIONS = ["-pd_control", "arclength", "-pd_arclength_implex", "0.03", "-pd
 # `path --direct`: a MUMPS factor of every tangent, its null pivots detected (ICNTL(24)), so that a fragment a
 # crack has freed is held where it is instead of breaking the factorisation (docs/reinforcement.md)
 DIRECT_OPTIONS = ["-ksp_type", "preonly", "-pc_type", "cholesky", "-pc_factor_mat_solver_type", "mumps", "-mat_mumps_icntl_24", "1"]
-PATH_LIMIT = 3600  # s: the issue's budget per beam
+PATH_LIMIT = 3600  # s: the time budget per beam
+BLAS_NAME = {"netlib": "reference BLAS", "openblas": "OpenBLAS"}  # MUMPS's dense work; rows without a record ran on the reference one
 
 
 def load_factor(summary):
@@ -85,9 +86,9 @@ def measure(beams, path=False, direct=False):
                    "first_yield_kN": f * s["bars"]["first_yield"]["load_N"] / 1e3 if s["bars"]["first_yield"] else None,
                    "P_from": P_FROM[f],
                    "kinetic_over_work_at_peak": rows[k]["kinetic_J"] / max(rows[k]["external_J"], 1e-30), "options": extra, "exit": code,
-                   "status": s["status"], "commit": COMMIT}
+                   "status": s["status"], "commit": COMMIT, "eps_cu": float(s["options"].get("-pd_eps_cu", 0))}
         if path:
-            run.update({"steps": s["steps"], "newton_its": s["newton_its"], "ksp_its": s["ksp_its"], "solver": s["solver"]})
+            run.update({"steps": s["steps"], "newton_its": s["newton_its"], "ksp_its": s["ksp_its"], "solver": s["solver"], "blas": system_blas()})
         print(n, run)
         # read again before writing: another instance may have saved other beams meanwhile
         res = load_results(JSON)
@@ -172,7 +173,9 @@ def report():
         lines += ["", "## Path following", "",
                   "The same scenes traced by arc length with IMPL-EX steps (`benchmarks/stuttgart.py path [--direct] BEAM`: damage error "
                   "0.03 per step, stopped once the load fell below half its peak or after %d s). Solver: the default linear solver "
-                  "(GAMG), or with `--direct` a MUMPS factor of every tangent with its null pivots detected (`%s`). Mode and deflection "
+                  "(GAMG), or with `--direct` a MUMPS factor of every tangent with its null pivots detected (`%s`), on the BLAS named (the rows "
+                  "before pdimplicit's set-up installed OpenBLAS ran on the reference BLAS, several times slower in MUMPS's dense work: "
+                  "docs/benchmarks/blas.md). Mode and deflection "
                   "as above; the path may turn back in deflection after the peak (snap-back)." % (PATH_LIMIT, " ".join(DIRECT_OPTIONS)), "",
                   "| beam | a_v/d | experiment P (kN), mode | pdimplicit P (kN), error, mode | explicit P (kN) | deflection (mm) | steel stress at the peak (MPa) "
                   "| solver | steps / Newton / Krylov | CPU (s) | wall (s) | end | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
@@ -184,7 +187,7 @@ def report():
             lines.append("| %d | %g | %.0f, %s | %.0f, %s, %s | %s | %.2f | %.0f | %s | %d / %d / %d | %s | %s | %s | %s |" % (
                 n, AVD[n], e, mode, r["peak_kN"], err(r["peak_kN"], e), r["mode"], "%.0f" % done[n]["peak_kN"] if n in done else "-",
                 1e3 * r["disp_at_peak_m"], r["steel_stress_at_peak_Pa"] / 1e6,
-                "MUMPS, null pivots" if "-mat_mumps_icntl_24" in r["options"] else "GAMG", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["wall_s"],
+                ("MUMPS, null pivots, %s" % BLAS_NAME[r.get("blas", "netlib")]) if "-mat_mumps_icntl_24" in r["options"] else "GAMG", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["wall_s"],
                 r["status"].split(":")[0], r["commit"]))
     lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit, explicit | pdimplicit, path following |", "|---|---|---|---|---|",
               "| beams | %d | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done), len(path)),

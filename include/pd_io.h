@@ -14,6 +14,8 @@ typedef struct {
   PetscInt  yielded;      /* bar segments yielded or broken */
   PetscReal steel_stress; /* largest |stress| in a bar segment (Pa) */
   PetscReal slip;         /* largest |slip| of a bar node with bond slip (m) */
+  /* -pd_eps_cu: the bond closest to crushing, its stretch, -stretch / eps_cu and its midpoint (m) */
+  PetscReal strain_min, crush_ratio, crush_at[3];
 } PDCurveRow;
 
 typedef struct {
@@ -67,6 +69,7 @@ PetscErrorCode PDRecordCreate(MPI_Comm, const PDScene *, PDRecord *);
    of a checkpoint). */
 PetscErrorCode PDRecordAddRow(PDRecord *, const PDCurveRow *);
 PetscErrorCode PDRecordClearRows(PDRecord *);
+PetscErrorCode PDCrushedStatus(const PDScene *, PDRecord *, const PDCurveRow *);
 PetscErrorCode PDRecordDestroy(PDRecord *);
 /* Before anything is built: the output directory is a writable directory, or can be made one. */
 PetscErrorCode PDOutputCheck(MPI_Comm, const PDScene *);

@@ -106,7 +106,7 @@ PetscReal      PDModelNodeMass(const PDModel *, PetscInt i);
 PetscErrorCode PDModelDestroy(PDModel *);
 /* Per-bond thresholds as built (strength scatter, surface correction), without crushing's rises. */
 void PDModelResetThresholds(PDModel *);
-#define PD_MAX_EFFECTS 10
+#define PD_MAX_EFFECTS 12
 PetscInt       PDModelEffects(const PDModel *, const char *names[PD_MAX_EFFECTS]);
 PetscErrorCode PDModelCreateMatrix(PDModel *, PetscReal reach2, Mat *);
 PetscErrorCode PDMatUseDiagonalIndex(Mat);
@@ -142,3 +142,4 @@ PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
 /* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars), and the
    largest |slip| of a bar node with bond slip along its bar, against the node it shadows (m; 0 without). */
 PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress, PetscReal *slip);
+PetscErrorCode PDModelCrushing(PDModel *, Vec u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]);

@@ -84,6 +84,7 @@ typedef struct {
   PDLawKind  law;
   PetscReal  ft, Gf;   /* tensile strength (Pa), fracture energy (N/m) */
   PetscReal  fc;       /* compressive strength (Pa) that raises tensile thresholds under compression; 0: off */
+  PetscReal  eps_cu;   /* ultimate compressive strain: a run stops as crushed once a bond's stretch reaches -eps_cu; 0: off */
   PetscReal  kr;       /* bilinear sc/s0 (Zaccariotto form) */
   PetscBool  bobaru;   /* bilinear in the Bobaru form, s0 = ft/E */
   PetscReal  beta;     /* trilinear */

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian packages pdimplicit needs when any is missing. Run as root (CI is root);
-# otherwise prints the command to run.
+# otherwise prints the command to run. libopenblas0-serial takes over Debian's libblas.so.3 and liblapack.so.3
+# alternatives from the reference BLAS: the direct solvers (MUMPS, CHOLMOD) factor several times faster on it
+# (docs/solvers.md); serial, so that MPI ranks do not start threads of their own.
 set -euo pipefail
-pkgs=(petsc-dev libhdf5-openmpi-dev hdf5-tools openmpi-bin cmake make gcc pkg-config time python3 python3-numpy python3-matplotlib python3-h5py)
+pkgs=(petsc-dev libhdf5-openmpi-dev hdf5-tools openmpi-bin cmake make gcc pkg-config time python3 python3-numpy python3-matplotlib python3-h5py libopenblas0-serial)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -12,12 +12,12 @@ pushed along one line of nodes at its middle (a roller or a hinge), so that the 
 point moves down by the same amount; the curve's load is one load point's reaction, half the thesis's P
 (Table 7.3 gives the total of both point loads: Eurocode 2's flexural P = 2 M_u / L_1 for beams 8 and 10).
 The concrete's compressive strength is f_cm (-pd_fc: crushing, docs/softening.md; without it the lattice's
-struts and compression zones fail at a fraction of it), and the bars are bonded by the fib Model Code 2010
-bond-slip law with the same f_cm (docs/reinforcement.md).
+struts and compression zones fail at a fraction of it), its ultimate compressive strain Eurocode 2's eps_cu2 =
+0.0035 (-pd_eps_cu: a run stops where the concrete crushes, and the failure mode follows; docs/reinforcement.md),
+and the bars are bonded by the fib Model Code 2010 bond-slip law with the same f_cm (docs/reinforcement.md).
 
 Usage: scripts/stuttgart_scenes.py [--dim 2] [--out FOLDER]   (from the repository root; FOLDER by default options/)
 """
-import math
 import os
 import sys
 
@@ -52,7 +52,7 @@ def scene(n, dim, outdir):
             % ("3D." if dim == 3 else "2D plane stress, 190 mm thick."),
             "-pd_name " + name]
     lines = head + lines + ["-pd_dx %g" % DX, "-pd_E %g" % (ec * 1e6), "-pd_rho 2400", "-pd_law bilinear", "-pd_bilinear_kr 25",
-                            "-pd_ft %.6g" % ft, "-pd_Gf %g" % gf, "-pd_fc %g" % (fcm * 1e6)]
+                            "-pd_ft %.6g" % ft, "-pd_Gf %g" % gf, "-pd_fc %g" % (fcm * 1e6), "-pd_eps_cu 0.0035"]
     for k, (where, count) in enumerate(bars):
         lines += ["-pd_bar%d_line %s" % (k, where), "-pd_bar%d_diameter 0.026" % k, "-pd_bar%d_count %d" % (k, count),
                   "-pd_bar%d_E 208e9" % k, "-pd_bar%d_fy 465e6" % k, "-pd_bar%d_bond slip" % k]

@@ -3,8 +3,9 @@
 broken bonds match the explicit path's. With `slip`, the same beam with the bar on its own nodes under the
 bond-slip law: displacement control alone carries it through its first cracks, its end state matches the
 explicit path's, and the bar nodes' mass scaling keeps the explicit step at the concrete's. With `mode`, the
-failure mode summary.json reports, on the bond-slip beam traced through its bar's yield explicitly.
-Usage: test_rc_beam.py [slip|mode]"""
+failure mode summary.json reports, on the bond-slip beam traced through its bar's yield explicitly. With
+`crush`, the crushing criterion (-pd_eps_cu) on an elastic prism and on that beam.
+Usage: test_rc_beam.py [slip|mode|crush]"""
 import bisect
 import sys
 
@@ -110,5 +111,38 @@ def mode():
             check(abs(held / last["external_J"] - 1) < 0.01, "energy balance at the end: work %.3f J, held %.3f J (1 %%)" % (last["external_J"], held))
 
 
+def crush():
+    # The crushing criterion (-pd_eps_cu, docs/reinforcement.md "Failure mode"). First an elastic prism in
+    # uniaxial compression: the layers held by the support and the load are left out, so the bond strain it
+    # follows is the prism's own, about u / h between the first and last node rows (h = 0.195 m; the two
+    # layers next to the held rows take a little more than their share of u, the body a little less: 2e-3
+    # bounds that), in proportion to u at every step (linear), and the run stops at the first step beyond
+    # -eps_cu.
+    r = run("prism_compression_2d", "-pd_law", "elastic", "-pd_eps_cu", "0.002", "-pd_steps", "10", "-pd_lambda_max", "1")
+    s, c = r.summary, r.curve
+    check(s["status"].startswith("crushed") and s["converged"] and "crushing_strain" in s["effects"], "elastic prism: %s (effects %s)" % (
+        s["status"], ", ".join(s["effects"])))
+    ratios = [row["strain_min"] / (-row["disp_m"] / 0.195) for row in c]
+    check(abs(ratios[0] - 1) < 2e-3 and max(abs(q / ratios[0] - 1) for q in ratios) < 1e-9,
+          "strain followed: %.5f times the prism's u / h (within 2e-3), the same at every step" % ratios[0])
+    check(c[-1]["strain_min"] <= -0.002 < c[-2]["strain_min"], "stopped at the first step beyond -0.002: %.5f after %.5f" % (
+        c[-1]["strain_min"], c[-2]["strain_min"]))
+    # The bond-slip beam with a hardening bar (explicit, as `mode`): the compression at the top grows after
+    # the bar yields (to about 0.0007), having stayed below about 0.0006 before, so eps_cu = 0.00065 crushes
+    # it in flexure, in the compression zone at the top of the span's middle third.
+    r = run("rc_beam_2d", "-pd_bar0_bond", "slip", "-pd_mode", "explicit", "-pd_lambda_max", "0.6", "-pd_bar0_fcm", "38e6",
+            "-pd_bar0_hardening", "0.2", "-pd_eps_cu", "0.00065")
+    s = r.summary
+    fy = s["bars"]["first_yield"]
+    x, y = [float(v) for v in s["status"].split(" at (")[1].split(")")[0].split(",")]
+    check(s["status"].startswith("crushed") and s["bars"]["failure_mode"] == "flexure" and fy and fy["step"] < r.curve[-1]["step"],
+          "hardening bar: %s, failure mode %s, first yield %s" % (s["status"], s["bars"]["failure_mode"], fy))
+    check(y > 0.13 and 0.45 < x < 0.85, "crushed in the compression zone at (%.3f, %.3f) m: top 20 mm, middle third of the span" % (x, y))
+    # without the criterion nothing of it shows
+    r = run("prism_compression_2d", "-pd_law", "elastic", "-pd_steps", "2", "-pd_lambda_max", "0.2")
+    check("crushing_strain" not in r.summary["effects"] and all(row["strain_min"] == 0 for row in r.curve),
+          "without -pd_eps_cu: no crushing_strain effect, strain_min 0 (%s)" % ", ".join(r.summary["effects"]))
+
+
 if __name__ == "__main__":
-    {"slip": slip, "mode": mode}.get(sys.argv[1] if sys.argv[1:] else "", main)()
+    {"slip": slip, "mode": mode, "crush": crush}.get(sys.argv[1] if sys.argv[1:] else "", main)()

@@ -16,7 +16,7 @@ PetscErrorCode PDCurveStart(PDRecord *rec) {
   PetscCheck(rec->curve, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s: %s", path, strerror(errno));
   fprintf(rec->curve,
           "step,lambda,load_N,disp_m,cmod_m,broken_bonds,newton_its,ksp_its,wall_s,external_J,stored_J,dissipated_J,kinetic_J,damped_J,"
-          "yielded_segments,steel_stress_Pa,slip_m\n");
+          "yielded_segments,steel_stress_Pa,slip_m,strain_min\n");
   PetscCheck(fflush(rec->curve) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s: %s", path, strerror(errno));
   PetscFunctionReturn(0);
 }
@@ -27,10 +27,10 @@ PetscErrorCode PDCurveAppend(PDRecord *rec, const PDCurveRow *r) {
   if (!rec->curve) PetscFunctionReturn(0);
   fprintf(rec->curve,
           "%" PetscInt_FMT ",%.15g,%.15g,%.15g,%.15g,%" PetscInt64_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT
-          ",%.4f,%.10g,%.10g,%.10g,%.10g,%.10g,%" PetscInt_FMT ",%.10g,%.10g\n",
+          ",%.4f,%.10g,%.10g,%.10g,%.10g,%.10g,%" PetscInt_FMT ",%.10g,%.10g,%.10g\n",
           r->step, (double)r->lambda, (double)r->load, (double)r->disp, (double)r->cmod, r->broken_bonds, r->newton_its, r->ksp_its,
           (double)r->wall, (double)r->external, (double)r->stored, (double)r->dissipated, (double)r->kinetic, (double)r->damped, r->yielded,
-          (double)r->steel_stress, (double)r->slip);
+          (double)r->steel_stress, (double)r->slip, (double)r->strain_min);
   PetscCheck(fflush(rec->curve) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s/curve.csv: %s", rec->dir, strerror(errno));
   PetscFunctionReturn(0);
 }

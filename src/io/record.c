@@ -32,6 +32,27 @@ PetscErrorCode PDRecordAddRow(PDRecord *rec, const PDCurveRow *row) {
   PetscFunctionReturn(0);
 }
 
+/* The status of a run that stopped because a bond reached its material's ultimate compressive strain at
+   the step of row (-pd_eps_cu): a failure found, not a failed run. */
+PetscErrorCode PDCrushedStatus(const PDScene *sc, PDRecord *rec, const PDCurveRow *row) {
+  const PetscReal *x = row->crush_at;
+
+  PetscFunctionBeginUser;
+  if (sc->dim == 3)
+    PetscCall(PetscSNPrintf(rec->status, sizeof rec->status,
+                            "crushed: a bond's stretch %.4g reached -pd_eps_cu %.4g at (%.4g, %.4g, %.4g) m, at step %" PetscInt_FMT
+                            ", load %.4g N",
+                            (double)row->strain_min, (double)(-row->strain_min / row->crush_ratio), (double)x[0], (double)x[1],
+                            (double)x[2], row->step, (double)row->load));
+  else
+    PetscCall(PetscSNPrintf(
+        rec->status, sizeof rec->status,
+        "crushed: a bond's stretch %.4g reached -pd_eps_cu %.4g at (%.4g, %.4g) m, at step %" PetscInt_FMT ", load %.4g N",
+        (double)row->strain_min, (double)(-row->strain_min / row->crush_ratio), (double)x[0], (double)x[1], row->step, (double)row->load));
+  rec->converged = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDRecordClearRows(PDRecord *rec) {
   PetscFunctionBeginUser;
   rec->nrows = 0;

@@ -1,6 +1,7 @@
 /* summary.json: what ran, what it cost and how it ended. */
 #include "pd_io.h"
 #include <stdio.h>
+#include <string.h>
 #include <sys/resource.h>
 
 /* Peak resident set of this process, summed over ranks. VmHWM belongs to the process image; ru_maxrss
@@ -103,15 +104,17 @@ static PetscErrorCode WriteOptions(MPI_Comm comm, FILE *fp, const PDScene *sc) {
   PetscFunctionReturn(0);
 }
 
-/* Failure mode of a reinforced member (docs/reinforcement.md, "Failure mode"): none unless the curve ends
-   PD_FAILURE_DROP or more below its peak; flexure where a bar yielded before the load fell for good (the
-   last row at or above 1 - PD_FAILURE_DROP of the peak: an explicit curve oscillates about it, so its
-   largest spike does not date the failure); shear (or anchorage) where the member failed with its bars
-   elastic. */
+/* Failure mode of a reinforced member (docs/reinforcement.md, "Failure mode"): the member fails where the
+   concrete crushes (the run stopped as crushed, -pd_eps_cu) or the curve ends PD_FAILURE_DROP or more
+   below its peak, and none otherwise; flexure where a bar yielded before it failed (before the crushing,
+   or before the load fell for good: the last row at or above 1 - PD_FAILURE_DROP of the peak, since an
+   explicit curve oscillates about it and its largest spike does not date the failure); shear (or
+   anchorage) where it failed with its bars elastic. */
 #define PD_FAILURE_DROP 0.1
 static const char *FailureMode(const PDRecord *rec, PetscInt first_yield) {
   PetscReal peak = PETSC_MIN_REAL;
   PetscInt  held = 0;
+  if (rec->nrows && !strncmp(rec->status, "crushed", 7)) return first_yield >= 0 ? "flexure" : "shear";
   for (PetscInt r = 0; r < rec->nrows; r++) peak = PetscMax(peak, rec->rows[r].load);
   for (PetscInt r = 0; r < rec->nrows; r++)
     if (rec->rows[r].load >= (1 - PD_FAILURE_DROP) * peak) held = r;

@@ -10,7 +10,7 @@
 /* Dilatation of each owned node, theta = dim sum w s / sum w over its bonds with w = c |xi|^2: for a
    homogeneous strain eps, the mean of s = n.eps.n over a symmetric family is tr(eps) / dim. Ghosts by
    the ghosted vector. */
-static PetscErrorCode NodalDilatation(PDModel *m, const PetscReal *s) {
+PetscErrorCode PDModelNodalDilatation(PDModel *m, const PetscReal *s) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   PetscScalar     *th;
@@ -43,7 +43,7 @@ PetscErrorCode PDModelConfine(PDModel *m, const PetscReal *s) {
 
   PetscFunctionBeginUser;
   if (!m->shift) PetscFunctionReturn(0);
-  PetscCall(NodalDilatation(m, s));
+  PetscCall(PDModelNodalDilatation(m, s));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
   PetscCall(VecGetArrayRead(loc, &th));
   for (PetscInt e = 0; e < bd->nbonds; e++) {

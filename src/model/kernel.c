@@ -538,6 +538,40 @@ PetscReal PDModelSlipLocal(PDModel *m, const PetscScalar *u) {
   return smax;
 }
 
+/* Whether local node i has a constrained dof (a support, or a load by prescribed displacement). */
+static inline PetscBool NodeHeld(const PDModel *m, PetscInt i) {
+  for (PetscInt r = 0; r < m->bs; r++)
+    if (m->fixed_local[m->bs * i + r]) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
+/* The bond of this rank closest to crushing, from the bond stretches s and the nodes' dilatations theta
+   (ghosted): the largest -s / eps_cu over the bonds of materials with an ultimate compressive strain
+   (-pd_eps_cu), its stretch and its midpoint. Only a bond whose two nodes are compressed counts (theta < 0):
+   a bond across a crack shortens as the crack's faces slide past each other, without crushing anything,
+   and its nodes dilate with the crack's opening. Left out too (docs/reinforcement.md, Failure mode): the
+   bonds of no-fail zones, plates and bars' links, whose material is none of the scene's, and the bonds of a
+   node held by a support or a prescribed displacement, since in the layer next to a face so held a
+   bond-based lattice strains well beyond the body's mean. *ratio stays -PETSC_MAX_REAL where no bond
+   counts. */
+void PDModelCrushingLocal(PDModel *m, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  *ratio               = -PETSC_MAX_REAL;
+  *s_min               = 0;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e], k = bd->material[e];
+    PetscReal      r;
+    if (k >= PD_MAX_MATERIALS || m->scene->material[k].eps_cu <= 0 || s[e] >= 0) continue;
+    if (PetscRealPart(theta[i]) >= 0 || PetscRealPart(theta[j]) >= 0 || NodeHeld(m, i) || NodeHeld(m, j)) continue;
+    r = -s[e] / m->scene->material[k].eps_cu;
+    if (r <= *ratio) continue;
+    *ratio = r;
+    *s_min = s[e];
+    for (PetscInt a = 0; a < 3; a++) at[a] = 0.5 * (lat->x[3 * i + a] + lat->x[3 * j + a]);
+  }
+}
+
 /* Bond damage with the committed history, for output. */
 PetscReal PDModelBondDamage(const PDModel *m, PetscInt e) {
   const PDLaw *law;

@@ -84,6 +84,9 @@ void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
+void PDModelCrushingLocal(PDModel *, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]);
+/* m->dilatation (ghosted) from the bond stretches s (confinement.c) */
+PetscErrorCode PDModelNodalDilatation(PDModel *, const PetscReal *s);
 
 /* A bond's stretch thresholds: its own (surface correction, strength scatter, crushing's rise) or its law's
    nominal ones. Evaluated from the nominal ones, not stored (PDLawBondThresholdsScaled). */

@@ -327,7 +327,6 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     }
     if (crush) {
       PetscCall(PetscCalloc1(nb, &m->shift));
-      PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
       m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
     }
     PDModelResetThresholds(m);
@@ -341,12 +340,20 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
       }
     if (!pass) PetscCall(PetscMalloc1(PetscMax(1, m->nslip), &m->slip_bond));
   }
+  {
+    PetscBool limit = PETSC_FALSE; /* -pd_eps_cu: the crushing criterion needs stretches and dilatations */
+    for (PetscInt k = 0; k < sc->nmaterials; k++) limit = limit || sc->material[k].eps_cu > 0 ? PETSC_TRUE : PETSC_FALSE;
+    if (m->shift || limit) PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
+    /* the commit's and the criterion's scratch, where no history came with it */
+    if (!m->softening && (sc->nbars || limit)) {
+      PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->stretch));
+      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
+    }
+  }
   if (sc->nbars) {
-    if (!m->softening) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->stretch)); /* the commit's scratch */
     PetscCall(
         PetscCalloc3(PetscMax(1, bd->nseg), &m->sp_n, PetscMax(1, bd->nseg), &m->ruptured_n, PetscMax(1, bd->nseg), &m->dissipated_n));
-    m->history_bytes += (PetscInt64)bd->nseg * (2 * sizeof(PetscReal) + sizeof(PetscBool)) +
-                        (m->softening ? 0 : (PetscInt64)bd->nbonds * sizeof(PetscReal));
+    m->history_bytes += (PetscInt64)bd->nseg * (2 * sizeof(PetscReal) + sizeof(PetscBool));
   }
   {
     PetscInt64 mine = m->history_bytes;
@@ -391,7 +398,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PDModelRowIndexDestroy(m));
   PetscCall(PetscFree(m->kb));
   PetscCall(PetscFree(m->kp));
-  if (!m->softening) PetscCall(PetscFree(m->stretch)); /* bars' scratch, allocated apart */
+  if (!m->softening) PetscCall(PetscFree(m->stretch)); /* scratch allocated apart (bars, -pd_eps_cu) */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->shift));
   PetscCall(PetscFree(m->strength));
@@ -757,6 +764,40 @@ PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The bond closest to crushing over all ranks (PDModelCrushingLocal): -s / eps_cu, its stretch s and its
+   midpoint, from the lowest rank that holds it (a bond with a ghost end is held by two). Off (ratio
+   -PETSC_MAX_REAL, s 0) where no material has -pd_eps_cu. */
+PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]) {
+  const PetscScalar *th;
+  Vec                loc;
+  PetscReal          mine, buf[4] = {0, 0, 0, 0};
+  PetscMPIInt        rank, size, holder, cand;
+  PetscBool          any = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  *ratio = -PETSC_MAX_REAL;
+  *s_min = 0;
+  for (PetscInt a = 0; a < 3; a++) at[a] = 0;
+  for (PetscInt k = 0; k < m->scene->nmaterials; k++) any = any || m->scene->material[k].eps_cu > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (!any) PetscFunctionReturn(0);
+  PetscCall(PDModelStretchesAt(m, u, m->stretch));
+  PetscCall(PDModelNodalDilatation(m, m->stretch));
+  PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
+  PetscCall(VecGetArrayRead(loc, &th));
+  PDModelCrushingLocal(m, m->stretch, th, &mine, &buf[0], &buf[1]);
+  PetscCall(VecRestoreArrayRead(loc, &th));
+  PetscCall(VecGhostRestoreLocalForm(m->dilatation, &loc));
+  PetscCall(MPIU_Allreduce(&mine, ratio, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
+  PetscCallMPI(MPI_Comm_rank(m->lat->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(m->lat->comm, &size));
+  cand = mine == *ratio ? rank : size;
+  PetscCall(MPIU_Allreduce(&cand, &holder, 1, MPI_INT, MPI_MIN, m->lat->comm));
+  PetscCallMPI(MPI_Bcast(buf, 4, MPIU_REAL, holder, m->lat->comm));
+  *s_min = buf[0];
+  for (PetscInt a = 0; a < 3; a++) at[a] = buf[1 + a];
+  PetscFunctionReturn(0);
+}
+
 /* Strain energy stored in the bonds and energy dissipated by damage, summed over ranks (J). */
 PetscErrorCode PDModelEnergy(PDModel *m, Vec u, PetscReal *stored, PetscReal *dissipated) {
   const PetscScalar *ul;
@@ -817,6 +858,11 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
   if (soft) names[n++] = "softening_damage";
   if (brk) names[n++] = "bond_breaking";
   if (m->shift) names[n++] = "crushing"; /* allocated where a material's -pd_fc raises thresholds */
+  for (PetscInt k = 0; k < sc->nmaterials; k++)
+    if (sc->material[k].eps_cu > 0) { /* a failure criterion: the run ends where the concrete crushes */
+      names[n++] = "crushing_strain";
+      break;
+    }
   if (sc->nbars) names[n++] = "steel_plasticity";
   for (PetscInt k = 0; k < sc->nbars; k++)
     if (sc->bar[k].rupture > 0) {

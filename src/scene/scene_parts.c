@@ -92,6 +92,7 @@ static PetscErrorCode ReadLaw(PetscOptionItems *PetscOptionsObject, PDScene *sc,
              PETSC_ERR_USER_INPUT, "Option %s_ft: the %s law needs a positive tensile strength, got %g", m->option, PDLawNames[m->law],
              (double)m->ft);
   PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_fc", &m->fc, NULL)); /* material data, like _ft: an elastic law ignores it */
+  PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_eps_cu", &m->eps_cu, NULL));
   PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_fcm", &fcm, &set_fcm));
   if (set_fcm) m->Gf = 73 * PetscPowReal(fcm, 0.18); /* fib MC2010; a given _Gf overrides it */
   PetscCall(MaterialReal(PetscOptionsObject, sc, m, "_Gf", &m->Gf, NULL));

@@ -156,6 +156,15 @@ const PDOptionSpec PDOptionSchema[] = {
                "so that uniaxial compression fails at fc instead of at the lattice's own E s0 / nu (about 3 ft); 0 (default): the "
                "thesis' bond, whose thresholds ignore compression. Material data: accepted with every law, used by the softening ones "
                "(docs/softening.md, Compression)"},
+    {.name   = "_eps_cu",
+     .family = MAT,
+     .base   = PETSC_TRUE,
+     .type   = PD_OPTION_REAL,
+     .def    = "0",
+     .range  = "[0, 0.1]",
+     .help   = "Ultimate compressive strain, a failure criterion: the run stops with status crushed once the stretch of one of the "
+               "material's bonds reaches -eps_cu (Eurocode 2's eps_cu2 = 0.0035 up to C50/60); the bonds themselves stay elastic in "
+               "compression. curve.csv's strain_min follows the bond closest to it. 0 (default): off (docs/reinforcement.md, Failure mode)"},
     {.name     = "_fcm",
      .family   = MAT,
      .base     = PETSC_TRUE,

@@ -376,15 +376,20 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(PDModelMeasure(m, u, &row.load, &row.disp, &row.cmod));
     PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
     PetscCall(PDModelSteelStress(m, u, &row.steel_stress, &row.slip));
+    PetscCall(PDModelCrushing(m, u, &row.crush_ratio, &row.strain_min, row.crush_at));
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
     if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;
+    if (row.crush_ratio >= 1) {
+      c->stopped = c->crushed = PETSC_TRUE;
+      c->crush_row            = row;
+    }
     if (!c->stopped) {
       PetscCall(PDInterrupted(m->lat->comm, &c->interrupted));
       c->stopped = c->interrupted;
     }
     PetscCall(PDProgress(m->lat->comm, m->scene, &row, c->stopped));
-    if (c->cmod_reached || c->interrupted) PetscCall(PDFieldsWrite(m, c->rec, step, u));
+    if (c->cmod_reached || c->crushed || c->interrupted) PetscCall(PDFieldsWrite(m, c->rec, step, u));
     PetscCall(VecRestoreSubVector(X, c->is_u, &u));
   }
   if (c->stopped) PetscCall(TSSetConvergedReason(ts, TS_CONVERGED_USER));
@@ -545,7 +550,7 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   PetscFunctionBeginUser;
   c->lambda_max = lambda_max;
   c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
-  c->stopped = c->cmod_reached = c->blew_up = c->interrupted = PETSC_FALSE;
+  c->stopped = c->cmod_reached = c->crushed = c->blew_up = c->interrupted = PETSC_FALSE;
   if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
   PDModelResetThresholds(m); /* a trial's rises under compression (-pd_fc) are history too */
   if (m->scene->nbars) {
@@ -607,6 +612,8 @@ PetscErrorCode PDExplicitStatus(PDExplicit *c) {
                             (double)c->m->scene->dt_safety));
   } else if (c->cmod_reached)
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)c->m->scene->stop_cmod));
+  else if (c->crushed)
+    PetscCall(PDCrushedStatus(c->m->scene, rec, &c->crush_row));
   else if (c->interrupted) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "interrupted by %s after time step %" PetscInt_FMT, PDInterruptSignal(),
@@ -627,7 +634,7 @@ PetscErrorCode PDExplicitRun(PDModel *m, PDRecord *rec) {
   PetscCall(PDExplicitCreate(m, rec, &c));
   PetscCall(PDExplicitSolve(&c, m->scene->lambda_max));
   PetscCall(PDExplicitStatus(&c));
-  if (rec->converged && !c.cmod_reached) { /* (an interrupted run wrote its fields when it stopped) */
+  if (rec->converged && !c.cmod_reached && !c.crushed) { /* (an interrupted run wrote its fields when it stopped) */
     Vec u;
     PetscCall(VecGetSubVector(c.X, c.is_u, &u));
     PetscCall(PDFieldsWrite(m, rec, rec->time_steps, u));

@@ -158,6 +158,11 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
         "Failure search: trial at %.1f N became unstable (stretch %.3g in one step, energy of %.3g of the work appeared in ten steps); "
         "lower -pd_dt_safety",
         (double)T, (double)c.ds_peak, (double)c.jump);
+    if (!jd.verdict && c.crushed) { /* -pd_eps_cu: the concrete crushed under the trial load */
+      jd.verdict = -1;
+      PetscCall(PetscSNPrintf(jd.why, sizeof jd.why, "crushed: a bond's stretch %.4g at time step %" PetscInt_FMT,
+                              (double)c.crush_row.strain_min, c.crush_row.step));
+    }
     if (!jd.verdict) {
       jd.verdict = -1;
       PetscCall(PetscSNPrintf(jd.why, sizeof jd.why, "undecided at the end of the hold (%g s)", (double)c.t_end));

@@ -67,6 +67,7 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   row->kinetic = row->damped = 0;
   PetscCall(PDModelEnergy(m, u, &row->stored, &row->dissipated));
   PetscCall(PDModelSteelStress(m, u, &row->steel_stress, &row->slip));
+  PetscCall(PDModelCrushing(m, u, &row->crush_ratio, &row->strain_min, row->crush_at));
   PetscCall(PDRecordAddRow(rec, row));
   rec->steps = p->step;
   PetscFunctionReturn(0);
@@ -76,7 +77,10 @@ PetscErrorCode PDPathStopCriteria(const PDScene *sc, PDRecord *rec, const PDCurv
                                   PetscBool *stop) {
   PetscFunctionBeginUser;
   *stop = PETSC_FALSE;
-  if (sc->stop_cmod > 0 && row->cmod >= sc->stop_cmod) {
+  if (row->crush_ratio >= 1) {
+    *stop = PETSC_TRUE;
+    PetscCall(PDCrushedStatus(sc, rec, row));
+  } else if (sc->stop_cmod > 0 && row->cmod >= sc->stop_cmod) {
     *stop = PETSC_TRUE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)sc->stop_cmod));
   } else if (judge_separation && sc->stop_fraction > 0 && peak > 0 && PetscAbsReal(row->load) < sc->stop_fraction * peak) {
