@@ -176,18 +176,19 @@ def report():
                   "(GAMG), or with `--direct` a MUMPS factor of every tangent with its null pivots detected (`%s`), on the BLAS named (the rows "
                   "before pdimplicit's set-up installed OpenBLAS ran on the reference BLAS, several times slower in MUMPS's dense work: "
                   "docs/benchmarks/blas.md). Mode and deflection "
-                  "as above; the path may turn back in deflection after the peak (snap-back)." % (PATH_LIMIT, " ".join(DIRECT_OPTIONS)), "",
+                  "as above; the path may turn back in deflection after the peak (snap-back). eps_cu: the ultimate compressive strain at which "
+                  "the run stops as crushed (`-pd_eps_cu`, docs/reinforcement.md, \"Failure mode\"); - where the run predates it." % (PATH_LIMIT, " ".join(DIRECT_OPTIONS)), "",
                   "| beam | a_v/d | experiment P (kN), mode | pdimplicit P (kN), error, mode | explicit P (kN) | deflection (mm) | steel stress at the peak (MPa) "
-                  "| solver | steps / Newton / Krylov | CPU (s) | wall (s) | end | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+                  "| solver | eps_cu | steps / Newton / Krylov | CPU (s) | wall (s) | end | commit |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
         for n, r in sorted(path.items()):
             exps, mode = TABLE[n][0], TABLE[n][1]
             e = sum(exps) / len(exps)
             perr.append(abs(r["peak_kN"] / e - 1))
             pmodes += r["mode"] == mode
-            lines.append("| %d | %g | %.0f, %s | %.0f, %s, %s | %s | %.2f | %.0f | %s | %d / %d / %d | %s | %s | %s | %s |" % (
+            lines.append("| %d | %g | %.0f, %s | %.0f, %s, %s | %s | %.2f | %.0f | %s | %s | %d / %d / %d | %s | %s | %s | %s |" % (
                 n, AVD[n], e, mode, r["peak_kN"], err(r["peak_kN"], e), r["mode"], "%.0f" % done[n]["peak_kN"] if n in done else "-",
                 1e3 * r["disp_at_peak_m"], r["steel_stress_at_peak_Pa"] / 1e6,
-                ("MUMPS, null pivots, %s" % BLAS_NAME[r.get("blas", "netlib")]) if "-mat_mumps_icntl_24" in r["options"] else "GAMG", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["wall_s"],
+                ("MUMPS, null pivots, %s" % BLAS_NAME[r.get("blas", "netlib")]) if "-mat_mumps_icntl_24" in r["options"] else "GAMG", "%g" % r["eps_cu"] if r.get("eps_cu") else "-", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"], r["wall_s"],
                 r["status"].split(":")[0], r["commit"]))
     lines += ["", "| | Eurocode 2 | thesis PD | pdimplicit, explicit | pdimplicit, path following |", "|---|---|---|---|---|",
               "| beams | %d | %d | %d | %d |" % (len(TABLE), len(TABLE), len(done), len(path)),
