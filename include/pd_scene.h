@@ -250,6 +250,8 @@ PetscErrorCode PDSceneOptionsMarkdown(MPI_Comm);
 PetscErrorCode PDSceneView(const PDScene *, PetscViewer);
 /* Whether a material has a law that damages bonds (every law but elastic), or a bar's bond slips. */
 PetscBool PDSceneHasDamage(const PDScene *);
+/* Whether a material has an ultimate compressive strain (-pd_eps_cu): the crushing criterion is on. */
+PetscBool PDSceneHasCrushingStrain(const PDScene *);
 /* Whether a region holds the node at x. A box with zero extent along an axis selects one layer of nodes:
    the nearest to its plane; a plane halfway between two layers takes the upper one, except on the
    domain's upper face, where it takes the layer below. */

@@ -7,6 +7,7 @@ failure mode summary.json reports, on the bond-slip beam traced through its bar'
 `crush`, the crushing criterion (-pd_eps_cu) on an elastic prism and on that beam.
 Usage: test_rc_beam.py [slip|mode|crush]"""
 import bisect
+import os
 import sys
 
 import numpy as np
@@ -138,6 +139,15 @@ def crush():
     check(s["status"].startswith("crushed") and s["bars"]["failure_mode"] == "flexure" and fy and fy["step"] < r.curve[-1]["step"],
           "hardening bar: %s, failure mode %s, first yield %s" % (s["status"], s["bars"]["failure_mode"], fy))
     check(y > 0.13 and 0.45 < x < 0.85, "crushed in the compression zone at (%.3f, %.3f) m: top 20 mm, middle third of the span" % (x, y))
+    # a path-following run of the prism, stopped short of crushing with a checkpoint, goes on from it (the
+    # linear model's stiffness is assembled anew for the restart's matrix) and keeps its strain column
+    prism = ["-pd_law", "elastic", "-pd_control", "arclength", "-pd_steps", "10"]
+    a = run("prism_compression_2d", *prism, "-pd_eps_cu", "0.004", "-pd_lambda_max", "0.4", "-pd_checkpoint_every", "2")
+    b = run("prism_compression_2d", *prism, "-pd_eps_cu", "0.002", "-pd_lambda_max", "1", "-pd_restart",
+            os.path.join(a.dir, "checkpoint.h5"))
+    kept = [row["strain_min"] for row in b.curve[:len(a.curve)]]
+    check(b.summary["status"].startswith("crushed") and kept == [row["strain_min"] for row in a.curve],
+          "restart: %s; strain_min of the %d rows before it kept" % (b.summary["status"], len(a.curve)))
     # without the criterion nothing of it shows
     r = run("prism_compression_2d", "-pd_law", "elastic", "-pd_steps", "2", "-pd_lambda_max", "0.2")
     check("crushing_strain" not in r.summary["effects"] and all(row["strain_min"] == 0 for row in r.curve),

@@ -475,19 +475,22 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
   PetscFunctionReturn(0);
 }
 
-/* The rows' largest slip (scenes with bond slip), apart from the rows, so that the rows of checkpoints
-   written without it still read. */
-static PetscErrorCode WriteSlipRows(MPI_Comm comm, const PDRecord *rec, PetscViewer v) {
+/* Columns of the rows kept apart from them, so that the rows of checkpoints written without them still
+   read: the largest slip (scenes with bond slip) and the bond strain closest to crushing (-pd_eps_cu). */
+typedef enum { COLUMN_SLIP, COLUMN_STRAIN_MIN } RowColumn;
+static const char *const column_names[] = {"curve_slip", "curve_strain_min"};
+
+static PetscErrorCode WriteRowColumn(MPI_Comm comm, const PDRecord *rec, RowColumn c, PetscViewer v) {
   Vec          S;
   PetscScalar *a;
   PetscInt     lo, hi;
 
   PetscFunctionBeginUser;
   PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, rec->nrows), &S));
-  PetscCall(PetscObjectSetName((PetscObject)S, "curve_slip"));
+  PetscCall(PetscObjectSetName((PetscObject)S, column_names[c]));
   PetscCall(VecGetOwnershipRange(S, &lo, &hi));
   PetscCall(VecGetArray(S, &a));
-  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r < rec->nrows ? rec->rows[r].slip : 0;
+  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r < rec->nrows ? (c == COLUMN_SLIP ? rec->rows[r].slip : rec->rows[r].strain_min) : 0;
   PetscCall(VecRestoreArray(S, &a));
   PetscCall(VecView(S, v));
   PetscCall(VecDestroy(&S));
@@ -537,25 +540,32 @@ static PetscErrorCode WriteRows(MPI_Comm comm, const PDRecord *rec, PetscViewer 
 }
 
 static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscBool slip, PetscViewer v) {
-  Vec                all, slips = NULL;
-  const PetscScalar *a, *sl     = NULL;
+  Vec                all, col[2] = {NULL, NULL};
+  const PetscScalar *a, *c[2]    = {NULL, NULL};
+  PetscBool          has;
 
   PetscFunctionBeginUser;
   PetscCall(ReadToAll(comm, v, "curve", PetscMax(1, nrows) * ROW_FIELDS, &all));
-  if (slip) PetscCall(ReadToAll(comm, v, "curve_slip", PetscMax(1, nrows), &slips));
+  if (slip) PetscCall(ReadToAll(comm, v, column_names[COLUMN_SLIP], PetscMax(1, nrows), &col[COLUMN_SLIP]));
+  PetscCall(PetscViewerHDF5HasDataset(v, column_names[COLUMN_STRAIN_MIN], &has)); /* (not in files from before it existed) */
+  if (has) PetscCall(ReadToAll(comm, v, column_names[COLUMN_STRAIN_MIN], PetscMax(1, nrows), &col[COLUMN_STRAIN_MIN]));
   PetscCall(VecGetArrayRead(all, &a));
-  if (slips) PetscCall(VecGetArrayRead(slips, &sl));
+  for (PetscInt k = 0; k < 2; k++)
+    if (col[k]) PetscCall(VecGetArrayRead(col[k], &c[k]));
   PetscCall(PDRecordClearRows(rec));
   for (PetscInt r = 0; r < nrows; r++) {
     PDCurveRow row = {0};
     RowUnpack(a + r * ROW_FIELDS, &row);
-    if (sl) row.slip = PetscRealPart(sl[r]);
+    if (c[COLUMN_SLIP]) row.slip = PetscRealPart(c[COLUMN_SLIP][r]);
+    if (c[COLUMN_STRAIN_MIN]) row.strain_min = PetscRealPart(c[COLUMN_STRAIN_MIN][r]);
     PetscCall(PDRecordAddRow(rec, &row));
   }
   PetscCall(VecRestoreArrayRead(all, &a));
-  if (slips) PetscCall(VecRestoreArrayRead(slips, &sl));
+  for (PetscInt k = 0; k < 2; k++) {
+    if (col[k]) PetscCall(VecRestoreArrayRead(col[k], &c[k]));
+    PetscCall(VecDestroy(&col[k]));
+  }
   PetscCall(VecDestroy(&all));
-  PetscCall(VecDestroy(&slips));
   PetscFunctionReturn(0);
 }
 
@@ -595,7 +605,8 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(Totals(m, rec, v, PETSC_TRUE));
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5WriteAttribute(v, "/", real_name[k], PETSC_REAL, &real[k]));
   PetscCall(WriteRows(comm, rec, v));
-  if (m->lat->nbarnodes) PetscCall(WriteSlipRows(comm, rec, v));
+  if (m->lat->nbarnodes) PetscCall(WriteRowColumn(comm, rec, COLUMN_SLIP, v));
+  if (PDSceneHasCrushingStrain(m->scene)) PetscCall(WriteRowColumn(comm, rec, COLUMN_STRAIN_MIN, v));
   if (m->softening) PetscCall(WriteHistory(m, kappa_prev, v));
   if (m->scene->nbars) PetscCall(WriteSteel(m, v));
   for (PetscInt k = 0; k < nvec; k++) {

@@ -341,8 +341,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     if (!pass) PetscCall(PetscMalloc1(PetscMax(1, m->nslip), &m->slip_bond));
   }
   {
-    PetscBool limit = PETSC_FALSE; /* -pd_eps_cu: the crushing criterion needs stretches and dilatations */
-    for (PetscInt k = 0; k < sc->nmaterials; k++) limit = limit || sc->material[k].eps_cu > 0 ? PETSC_TRUE : PETSC_FALSE;
+    const PetscBool limit = PDSceneHasCrushingStrain(sc); /* the crushing criterion needs stretches and dilatations */
     if (m->shift || limit) PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
     /* the commit's and the criterion's scratch, where no history came with it */
     if (!m->softening && (sc->nbars || limit)) {
@@ -577,8 +576,13 @@ PetscErrorCode PDModelJacobian(SNES snes, Vec u, Mat J, Mat P, void *ctx) {
 
   PetscFunctionBeginUser;
   (void)snes;
-  /* a linear model's stiffness never changes: assemble it once, and the preconditioner is kept too */
-  if (m->linear && m->jacobian_assemblies > 0) PetscFunctionReturn(0);
+  /* a linear model's stiffness never changes: assemble it once, and the preconditioner is kept too (the
+     count alone does not say so: a restart carries it over from the run before, to a matrix not yet filled) */
+  if (m->linear && m->jacobian_assemblies > 0) {
+    PetscBool filled;
+    PetscCall(MatAssembled(P, &filled));
+    if (filled) PetscFunctionReturn(0);
+  }
   PetscCall(PetscTime(&t0));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   if (m->ka) {
@@ -772,14 +776,12 @@ PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s
   Vec                loc;
   PetscReal          mine, buf[4] = {0, 0, 0, 0};
   PetscMPIInt        rank, size, holder, cand;
-  PetscBool          any = PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *ratio = -PETSC_MAX_REAL;
   *s_min = 0;
   for (PetscInt a = 0; a < 3; a++) at[a] = 0;
-  for (PetscInt k = 0; k < m->scene->nmaterials; k++) any = any || m->scene->material[k].eps_cu > 0 ? PETSC_TRUE : PETSC_FALSE;
-  if (!any) PetscFunctionReturn(0);
+  if (!PDSceneHasCrushingStrain(m->scene)) PetscFunctionReturn(0);
   PetscCall(PDModelStretchesAt(m, u, m->stretch));
   PetscCall(PDModelNodalDilatation(m, m->stretch));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
@@ -857,12 +859,8 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
   names[n++] = "elasticity";
   if (soft) names[n++] = "softening_damage";
   if (brk) names[n++] = "bond_breaking";
-  if (m->shift) names[n++] = "crushing"; /* allocated where a material's -pd_fc raises thresholds */
-  for (PetscInt k = 0; k < sc->nmaterials; k++)
-    if (sc->material[k].eps_cu > 0) { /* a failure criterion: the run ends where the concrete crushes */
-      names[n++] = "crushing_strain";
-      break;
-    }
+  if (m->shift) names[n++] = "crushing";                            /* allocated where a material's -pd_fc raises thresholds */
+  if (PDSceneHasCrushingStrain(sc)) names[n++] = "crushing_strain"; /* a failure criterion: the run ends where the concrete crushes */
   if (sc->nbars) names[n++] = "steel_plasticity";
   for (PetscInt k = 0; k < sc->nbars; k++)
     if (sc->bar[k].rupture > 0) {

@@ -221,6 +221,12 @@ PetscBool PDSceneHasDamage(const PDScene *sc) {
   return PETSC_FALSE;
 }
 
+PetscBool PDSceneHasCrushingStrain(const PDScene *sc) {
+  for (PetscInt k = 0; k < sc->nmaterials; k++)
+    if (sc->material[k].eps_cu > 0) return PETSC_TRUE;
+  return PETSC_FALSE;
+}
+
 PetscErrorCode PDSceneView(const PDScene *sc, PetscViewer v) {
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(v, "Scene %s: %s, domain [%g %g %g] to [%g %g %g] m, dx %g m, horizon %g dx, influence %s\n", sc->name,
