@@ -124,10 +124,14 @@ def crush():
     check(s["status"].startswith("crushed") and s["converged"] and "crushing_strain" in s["effects"], "elastic prism: %s (effects %s)" % (
         s["status"], ", ".join(s["effects"])))
     ratios = [row["strain_min"] / (-row["disp_m"] / 0.195) for row in c]
-    check(abs(ratios[0] - 1) < 2e-3 and max(abs(q / ratios[0] - 1) for q in ratios) < 1e-9,
-          "strain followed: %.5f times the prism's u / h (within 2e-3), the same at every step" % ratios[0])
+    check(abs(ratios[0] - 1) < 2e-3 and max(abs(q / ratios[0] - 1) for q in ratios) < 1e-5,
+          "strain followed: %.5f times the prism's u / h (within 2e-3), the same at every step (to 1e-5: of bonds whose compressions "
+          "tie within 1e-6, the criterion follows the one of the smallest id)" % ratios[0])
     check(c[-1]["strain_min"] <= -0.002 < c[-2]["strain_min"], "stopped at the first step beyond -0.002: %.5f after %.5f" % (
         c[-1]["strain_min"], c[-2]["strain_min"]))
+    # the prism is symmetric, so several bonds tie for the largest compression: two ranks name the same one
+    r2 = run("prism_compression_2d", "-pd_law", "elastic", "-pd_eps_cu", "0.002", "-pd_steps", "10", "-pd_lambda_max", "1", ranks=2)
+    check(r2.summary["status"] == s["status"], "two ranks: %s" % r2.summary["status"])
     # The bond-slip beam with a hardening bar (explicit, as `mode`): the compression at the top grows after
     # the bar yields (to about 0.0007), having stayed below about 0.0006 before, so eps_cu = 0.00065 crushes
     # it in flexure, in the compression zone at the top of the span's middle third.

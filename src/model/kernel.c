@@ -552,21 +552,28 @@ static inline PetscBool NodeHeld(const PDModel *m, PetscInt i) {
    and its nodes dilate with the crack's opening. Left out too (docs/reinforcement.md, Failure mode): the
    bonds of no-fail zones, plates and bars' links, whose material is none of the scene's, and the bonds of a
    node held by a support or a prescribed displacement, since in the layer next to a face so held a
-   bond-based lattice strains well beyond the body's mean. *ratio stays -PETSC_MAX_REAL where no bond
-   counts. */
-void PDModelCrushingLocal(PDModel *m, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]) {
+   bond-based lattice strains well beyond the body's mean. Of ratios equal to PD_CRUSH_TIE the bond of the
+   smallest global id (*gid): a symmetric body has many such, whose order the solver's round-off would
+   decide, and any rank count should name the same. *ratio stays -PETSC_MAX_REAL where no bond counts. */
+void PDModelCrushingLocal(PDModel *m, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
+                          PetscReal at[3]) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   *ratio               = -PETSC_MAX_REAL;
+  *gid                 = INT64_MAX;
   *s_min               = 0;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e], k = bd->material[e];
     PetscReal      r;
+    PetscInt64     id;
     if (k >= PD_MAX_MATERIALS || m->scene->material[k].eps_cu <= 0 || s[e] >= 0) continue;
     if (PetscRealPart(theta[i]) >= 0 || PetscRealPart(theta[j]) >= 0 || NodeHeld(m, i) || NodeHeld(m, j)) continue;
     r = -s[e] / m->scene->material[k].eps_cu;
-    if (r <= *ratio) continue;
+    if (r < *ratio * (1 - PD_CRUSH_TIE)) continue;
+    id = PDBondGlobalId(lat, bd, e);
+    if (r <= *ratio * (1 + PD_CRUSH_TIE) && id >= *gid) continue;
     *ratio = r;
+    *gid   = id;
     *s_min = s[e];
     for (PetscInt a = 0; a < 3; a++) at[a] = 0.5 * (lat->x[3 * i + a] + lat->x[3 * j + a]);
   }

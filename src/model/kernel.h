@@ -84,7 +84,9 @@ void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
-void PDModelCrushingLocal(PDModel *, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]);
+#define PD_CRUSH_TIE 1e-6 /* relative difference of two bonds' compression below which they tie */
+void PDModelCrushingLocal(PDModel *, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
+                          PetscReal at[3]);
 /* m->dilatation (ghosted) from the bond stretches s (confinement.c) */
 PetscErrorCode PDModelNodalDilatation(PDModel *, const PetscReal *s);
 

@@ -769,12 +769,13 @@ PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress, PetscRea
 }
 
 /* The bond closest to crushing over all ranks (PDModelCrushingLocal): -s / eps_cu, its stretch s and its
-   midpoint, from the lowest rank that holds it (a bond with a ghost end is held by two). Off (ratio
-   -PETSC_MAX_REAL, s 0) where no material has -pd_eps_cu. */
+   midpoint; of ratios that tie the smallest global bond id, from the lowest rank that holds it (a bond
+   with a ghost end is held by two). Off (ratio -PETSC_MAX_REAL, s 0) where no material has -pd_eps_cu. */
 PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]) {
   const PetscScalar *th;
   Vec                loc;
-  PetscReal          mine, buf[4] = {0, 0, 0, 0};
+  PetscReal          mine, top, buf[5] = {0, 0, 0, 0, 0};
+  PetscInt64         gid, gmin;
   PetscMPIInt        rank, size, holder, cand;
 
   PetscFunctionBeginUser;
@@ -786,17 +787,21 @@ PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s
   PetscCall(PDModelNodalDilatation(m, m->stretch));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
   PetscCall(VecGetArrayRead(loc, &th));
-  PDModelCrushingLocal(m, m->stretch, th, &mine, &buf[0], &buf[1]);
+  PDModelCrushingLocal(m, m->stretch, th, &mine, &gid, &buf[1], &buf[2]);
+  buf[0] = mine;
   PetscCall(VecRestoreArrayRead(loc, &th));
   PetscCall(VecGhostRestoreLocalForm(m->dilatation, &loc));
-  PetscCall(MPIU_Allreduce(&mine, ratio, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
+  PetscCall(MPIU_Allreduce(&mine, &top, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
   PetscCallMPI(MPI_Comm_rank(m->lat->comm, &rank));
   PetscCallMPI(MPI_Comm_size(m->lat->comm, &size));
-  cand = mine == *ratio ? rank : size;
+  if (mine < top * (1 - PD_CRUSH_TIE)) gid = INT64_MAX;
+  PetscCall(MPIU_Allreduce(&gid, &gmin, 1, MPIU_INT64, MPI_MIN, m->lat->comm));
+  cand = gid == gmin ? rank : size;
   PetscCall(MPIU_Allreduce(&cand, &holder, 1, MPI_INT, MPI_MIN, m->lat->comm));
-  PetscCallMPI(MPI_Bcast(buf, 4, MPIU_REAL, holder, m->lat->comm));
-  *s_min = buf[0];
-  for (PetscInt a = 0; a < 3; a++) at[a] = buf[1 + a];
+  PetscCallMPI(MPI_Bcast(buf, 5, MPIU_REAL, holder, m->lat->comm));
+  *ratio = buf[0];
+  *s_min = buf[1];
+  for (PetscInt a = 0; a < 3; a++) at[a] = buf[2 + a];
   PetscFunctionReturn(0);
 }
 
