@@ -16,7 +16,7 @@ import xml.etree.ElementTree as ET
 
 from pdtest import ENV, EXE, check, run, scene
 
-COLUMNS = 17  # curve.csv
+COLUMNS = 18  # curve.csv
 
 
 def bad(name, args, *needles):
