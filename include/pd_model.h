@@ -122,9 +122,12 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
+/* The strain state at u: every local bond's stretch into m->stretch and, where a criterion or a law reads
+   it (-pd_fc, -pd_eps_cu), the nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */
+PetscErrorCode PDModelStrainState(PDModel *, Vec u);
 /* Crushing (-pd_fc): raises the thresholds of bonds still elastic by their law's confine times the
-   compression of their two nodes at the stretches s (one per local bond); a rise is never taken back. */
-PetscErrorCode PDModelConfine(PDModel *, const PetscReal *s);
+   compression of their two nodes, from the last strain state; a rise is never taken back. */
+PetscErrorCode PDModelConfine(PDModel *);
 PetscErrorCode PDModelStretchesAt(PDModel *, Vec u, PetscReal *s);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);
@@ -142,4 +145,6 @@ PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
 /* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars), and the
    largest |slip| of a bar node with bond slip along its bar, against the node it shadows (m; 0 without). */
 PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress, PetscReal *slip);
+/* The bond closest to crushing (-pd_eps_cu) at u, or with u NULL at the last strain state (an accepted
+   step's, which PDModelCommitHistory took). */
 PetscErrorCode PDModelCrushing(PDModel *, Vec u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]);

@@ -36,14 +36,14 @@ PetscErrorCode PDModelNodalDilatation(PDModel *m, const PetscReal *s) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelConfine(PDModel *m, const PetscReal *s) {
+/* From the dilatations of the last PDModelStrainState. */
+PetscErrorCode PDModelConfine(PDModel *m) {
   const PDBonds     *bd = m->bonds;
   Vec                loc;
   const PetscScalar *th;
 
   PetscFunctionBeginUser;
   if (!m->shift) PetscFunctionReturn(0);
-  PetscCall(PDModelNodalDilatation(m, s));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
   PetscCall(VecGetArrayRead(loc, &th));
   for (PetscInt e = 0; e < bd->nbonds; e++) {

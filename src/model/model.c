@@ -432,6 +432,13 @@ PetscErrorCode PDModelRestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode PDModelStrainState(PDModel *m, Vec u) {
+  PetscFunctionBeginUser;
+  PetscCall(PDModelStretchesAt(m, u, m->stretch));
+  if (m->dilatation) PetscCall(PDModelNodalDilatation(m, m->stretch));
+  PetscFunctionReturn(0);
+}
+
 /* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
 PetscErrorCode PDModelStretchesAt(PDModel *m, Vec u, PetscReal *s) {
   const PetscScalar *ul;
@@ -783,8 +790,7 @@ PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s
   *s_min = 0;
   for (PetscInt a = 0; a < 3; a++) at[a] = 0;
   if (!PDSceneHasCrushingStrain(m->scene)) PetscFunctionReturn(0);
-  PetscCall(PDModelStretchesAt(m, u, m->stretch));
-  PetscCall(PDModelNodalDilatation(m, m->stretch));
+  if (u) PetscCall(PDModelStrainState(m, u));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
   PetscCall(VecGetArrayRead(loc, &th));
   PDModelCrushingLocal(m, m->stretch, th, &mine, &gid, &buf[1], &buf[2]);

@@ -329,8 +329,8 @@ static PetscErrorCode PostStep(TS ts) {
   PetscCall(VecGetSubVector(X, c->is_u, &u));
   PetscCall(AddExternalWork(c, u));
   if (m->shift && step % PD_CHECK_EVERY == 0) { /* crushing: thresholds follow the compression, every tenth step like the check above */
-    PetscCall(PDModelStretchesAt(m, u, m->stretch));
-    PetscCall(PDModelConfine(m, m->stretch));
+    PetscCall(PDModelStrainState(m, u));
+    PetscCall(PDModelConfine(m));
   }
   PetscCall(VecRestoreSubVector(X, c->is_u, &u));
   if (m->scene->damping > 0 || m->scene->adr) { /* free dofs only: constrained ones follow the prescribed motion */
@@ -380,10 +380,7 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
     if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;
-    if (row.crush_ratio >= 1) {
-      c->stopped = c->crushed = PETSC_TRUE;
-      c->crush_row            = row;
-    }
+    if (row.crush_ratio >= 1) c->stopped = c->crushed = PETSC_TRUE;
     if (!c->stopped) {
       PetscCall(PDInterrupted(m->lat->comm, &c->interrupted));
       c->stopped = c->interrupted;
@@ -613,7 +610,7 @@ PetscErrorCode PDExplicitStatus(PDExplicit *c) {
   } else if (c->cmod_reached)
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "completed: CMOD reached %g m", (double)c->m->scene->stop_cmod));
   else if (c->crushed)
-    PetscCall(PDCrushedStatus(c->m->scene, rec, &c->crush_row));
+    PetscCall(PDCrushedStatus(c->m->scene, rec, &rec->rows[rec->nrows - 1]));
   else if (c->interrupted) {
     rec->converged = PETSC_FALSE;
     PetscCall(PetscSNPrintf(rec->status, sizeof rec->status, "interrupted by %s after time step %" PetscInt_FMT, PDInterruptSignal(),

@@ -38,8 +38,7 @@ struct PDExplicit {
   PetscReal         w_damp;       /* kinetic energy removed by damping so far, this rank (J) */
   PetscBool         stopped;      /* the CMOD stop or the monitor ended the integration */
   PetscBool         cmod_reached; /* the CMOD stop was reached */
-  PetscBool         crushed;      /* a bond reached its material's -pd_eps_cu */
-  PDCurveRow        crush_row;    /* the row where it did */
+  PetscBool         crushed;      /* a bond reached its material's -pd_eps_cu (at the record's last row) */
   PetscBool         blew_up;      /* non-finite or runaway state */
   PetscBool         interrupted;  /* SIGTERM (interrupt.c) ended the integration at a recorded row */
   Vec               adr_r, adr_u; /* dynamic relaxation: out-of-balance force and displacement at the last evaluation */

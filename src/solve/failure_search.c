@@ -161,7 +161,7 @@ PetscErrorCode PDFailureSearchRun(PDModel *m, PDRecord *rec) {
     if (!jd.verdict && c.crushed) { /* -pd_eps_cu: the concrete crushed under the trial load */
       jd.verdict = -1;
       PetscCall(PetscSNPrintf(jd.why, sizeof jd.why, "crushed: a bond's stretch %.4g at time step %" PetscInt_FMT,
-                              (double)c.crush_row.strain_min, c.crush_row.step));
+                              (double)rec->rows[rec->nrows - 1].strain_min, rec->rows[rec->nrows - 1].step));
     }
     if (!jd.verdict) {
       jd.verdict = -1;

@@ -179,17 +179,17 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   PetscReal     *s;
 
   PetscFunctionBeginUser;
-  if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
+  if (!m->stretch) PetscFunctionReturn(0); /* no history, no bars, no crushing criterion: nothing to commit or read */
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
+  PetscCall(PDModelStrainState(m, u));
   s = m->stretch;
-  PetscCall(PDModelStretchesAt(m, u, s));
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
     const PetscReal cap = s[e] < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
     m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
     m->level_n[e]       = m->level[e];
   }
   for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, s[bd->seg_bond[sg]]);
-  PetscCall(PDModelConfine(m, s));
+  PetscCall(PDModelConfine(m));
   PetscCall(PDModelCountDamage(m));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
   PetscFunctionReturn(0);
