@@ -65,21 +65,29 @@ typedef struct {
 /* The material of bar k's bond-slip links: their law is the bar's bond-slip law. */
 #define PD_MATERIAL_SLIP(k) (PD_MAX_MATERIALS + 1 + (k))
 #define PD_MATERIALS_ALL (PD_MAX_MATERIALS + 1 + PD_MAX_BARS)
+_Static_assert(PD_MATERIALS_ALL <= 256, "a bond's material is held in one byte");
 
 /* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
    A bond between two ranks is held by both; each adds only to its own rows. */
+#define PD_SHARES 4 /* a node's family shares: volume, stiffness along x, y, z (bonds.c) */
+
 typedef struct {
-  PetscInt   nbonds;
-  PetscInt64 nbonds_global; /* every bond counted once (64-bit: a global count passes 2^31 from about 30 M nodes) */
-  PetscInt  *a, *b;         /* [nbonds] local node indices, a owned */
-  PetscReal *coef;          /* [nbonds] c * omega * beta * lambda * V_a * V_b (N per unit stretch) */
-  PetscInt  *material;      /* [nbonds] material governing the bond */
+  PetscInt       nbonds;
+  PetscInt64     nbonds_global; /* every bond counted once (64-bit: a global count passes 2^31 from about 30 M nodes) */
+  PetscInt      *a, *b;         /* [nbonds] local node indices, a owned */
+  PetscReal     *coef;          /* [nbonds] c * omega * beta * lambda * V_a * V_b (N per unit stretch) */
+  unsigned char *material;      /* [nbonds] material governing the bond (below PD_MATERIALS_ALL) */
   /* incidence of owned nodes, neighbours sorted by global id: rows of the stiffness */
-  PetscInt  *inc_start;              /* [nowned+1] */
-  PetscInt  *inc_bond;               /* bond index */
-  PetscInt   ncut;                   /* bonds removed by notches (global) */
-  PetscReal  lambda_min, lambda_max; /* surface-correction range (global) */
-  PetscReal *lambda;                 /* [nbonds] surface-correction factor, kept only for per-bond critical stretches */
+  PetscInt *inc_start;              /* [nowned+1] */
+  PetscInt *inc_bond;               /* bond index */
+  PetscInt  ncut;                   /* bonds removed by notches (global) */
+  PetscReal lambda_min, lambda_max; /* surface-correction range (global) */
+  /* What a bond's surface-correction factor is evaluated from (PDBondSurfaceFactor), kept only for per-bond
+     critical stretches: the family shares of each local node, ghosts included, and the bulk node's (the
+     horizon's volume V0, or the stencil's stiffness S0): shares per node, not a factor per bond. */
+  PetscReal *sc_shares; /* [PD_SHARES*nlocal], or NULL */
+  PetscReal  sc_ref;
+  PetscBool  sc_stencil;
   /* steel bar segments (bars.c): a bond between consecutive nodes of a bar's line carries one beside its
      concrete part; a pair a notch cuts is kept for its segment with no concrete (coef 0) */
   PetscInt   nseg, nseg_global;
@@ -90,6 +98,25 @@ typedef struct {
 } PDBonds;
 
 PetscErrorCode PDLatticeCreate(MPI_Comm, const PDScene *, PDLattice *);
+PetscReal      PDBondSurfaceFactorStencil(const PDLattice *, const PDBonds *, PetscInt e);
+
+/* A bond's surface-correction factor lambda, as its coefficient holds it (bonds.c, SurfaceCorrection): from
+   its two nodes' family shares, evaluated in the same operations as when it was built, so the same bits;
+   1 for a bar node's link or tie, which nothing corrects. */
+static inline PetscReal PDBondSurfaceFactor(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
+  const PetscInt i = bd->a[e], j = bd->b[e];
+  PetscReal      vsum;
+  if (lat->barnode && (lat->barnode[i] >= 0 || lat->barnode[j] >= 0)) return 1;
+  if (bd->sc_stencil) return PDBondSurfaceFactorStencil(lat, bd, e);
+  vsum = bd->sc_shares[PD_SHARES * i] + bd->sc_shares[PD_SHARES * j];
+  return vsum > 0 ? 2 * bd->sc_ref / vsum : 1;
+}
+
+/* Global id of a bond (same on every rank): lower node id times N plus the higher one. */
+static inline PetscInt64 PDBondGlobalId(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
+  const PetscInt64 ga = lat->gid[bd->a[e]], gb = lat->gid[bd->b[e]];
+  return ga < gb ? ga * lat->nglobal + gb : gb * lat->nglobal + ga;
+}
 PetscErrorCode PDLatticeDestroy(PDLattice *);
 PetscErrorCode PDLatticeCreateGhostVec(const PDLattice *, PetscInt bs, Vec *);
 /* Local index of the node with global id gid, or -1 when this rank holds it neither as owned nor as ghost. */
@@ -119,8 +146,6 @@ static inline PetscReal PDBondStiffness(const PDBonds *bd, PetscInt e) {
   return bd->coef[e] + (bd->seg && bd->seg[e] >= 0 ? bd->seg_coef[bd->seg[e]] : 0);
 }
 PetscErrorCode PDBondsCreate(const PDScene *, const PDLattice *, PetscBool keep_lambda, PDBonds *);
-/* Global id of a bond (same on every rank): lower node id times N plus the higher one. */
-PetscInt64 PDBondGlobalId(const PDLattice *, const PDBonds *, PetscInt e);
 /* True on exactly one rank for every bond: the rank that owns its lower-id end. */
 PetscBool      PDBondCountedHere(const PDLattice *, const PDBonds *, PetscInt e);
 PetscErrorCode PDBondsDestroy(PDBonds *);

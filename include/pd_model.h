@@ -47,7 +47,7 @@ typedef struct {
   PetscReal     *kappa;                   /* largest stretch reached, committed at accepted steps */
   unsigned char *level;                   /* PDBondLevel the limiter allows the bond to reach */
   unsigned char *level_n;                 /* levels at the last accepted step, to restart a step */
-  PetscReal     *strength;                /* [nbonds] tensile strength over the law's (-pd_strength_scatter), or NULL */
+  PetscReal      strength_scatter;        /* -pd_strength_scatter: each bond's strength evaluated from its id (PDModelBondStrength) */
   PetscReal      onset[PD_MATERIALS_ALL]; /* per material, the smallest min(s0, sc) of its bonds on this rank: a
                                              bond whose stretch and history stay below it is elastic, and its
                                              thresholds need not be evaluated */
@@ -139,7 +139,21 @@ PetscErrorCode PDModelTangentApplyScalars(PDModel *, Vec u, const PetscReal *ka,
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);
 PetscErrorCode PDModelElasticApply(PDModel *, Vec x, Vec y);
 PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);
-PetscReal      PDUnitFromId(PetscInt64 id);
+/* A number in [-1, 1] from a global id (splitmix64): the same bond or dof gets the same value on any
+   rank count. */
+static inline PetscReal PDUnitFromId(PetscInt64 id) {
+  uint64_t z = (uint64_t)id + 0x9E3779B97F4A7C15ull;
+  z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z          = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return 2 * (PetscReal)(z >> 11) / (PetscReal)(1ull << 53) - 1;
+}
+
+/* Bond e's tensile strength over its law's (-pd_strength_scatter): from the bond's global id, so that any
+   rank count draws the same; evaluated, not stored. */
+static inline PetscReal PDModelBondStrength(const PDModel *m, PetscInt e) {
+  return m->strength_scatter > 0 ? 1 + m->strength_scatter * PDUnitFromId(PDBondGlobalId(m->lat, m->bonds, e)) : 1;
+}
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
 /* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars), and the

@@ -28,8 +28,6 @@ static PetscReal FamilyVolumeShare(const PDScene *sc, PetscReal beta) {
   return sc->sc_whole_cells ? 1 : beta;
 }
 
-#define PD_SHARES 4 /* per neighbour: family volume, stiffness along x, y, z */
-
 /* A neighbour's weights in the surface correction, from its lattice offset st (di, dj, dk, n2): [0] its
    share of the family volume (m^3); [1 + a] its share of the node's stiffness along axis a under the stencil
    calibration, omega beta |xi| e_a^4 in units of dx, the bond's term in C_aaaa (PDLatticeStiffnessRatio) */
@@ -165,7 +163,7 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
    concrete (its steel is set up with the other segments, bars.c); the link of bar node q carries the bond
    force tau(slip) times the bar's perimeter times q's share of the bar's length; a tie is as stiff across
    the bar as the concrete cell, E V / dx^2, split over its two. */
-static void BarPairConstants(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j, PetscReal *coef, PetscInt *material) {
+static void BarPairConstants(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j, PetscReal *coef, unsigned char *material) {
   const PetscInt q = lat->barnode[i] >= 0 ? lat->barnode[i] : lat->barnode[j], c = lat->barnode[i] >= 0 ? j : i;
   const PDBar   *b = &sc->bar[lat->bn_bar[q]];
   PetscInt       d[3], n2 = PDLatticeOffset(lat, i, j, d);
@@ -397,30 +395,21 @@ static PetscErrorCode SurfaceCorrection(const PDScene *sc, const PDLattice *lat,
   PetscCall(VecGhostUpdateEnd(shares, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGhostGetLocalForm(shares, &sloc));
   PetscCall(VecGetArray(sloc, &v));
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscScalar *va = &v[PD_SHARES * bd->a[e]], *vb = &v[PD_SHARES * bd->b[e]];
-    PetscReal          lam = 1;
-    if (beta[e] == 0) { /* no concrete, or a bar node's link or tie: nothing to correct */
-    } else if (stencil) {
-      PetscInt  d[3];
-      PetscReal n2 = PDLatticeOffset(lat, bd->a[e], bd->b[e], d), qa = 0, qb = 0;
-      for (PetscInt a = 0; a < 3; a++) {
-        qa += d[a] * d[a] / n2 * PetscSqr(PetscRealPart(va[1 + a]) / S0);
-        qb += d[a] * d[a] / n2 * PetscSqr(PetscRealPart(vb[1 + a]) / S0);
-      }
-      if (qa > 0 && qb > 0) lam = 0.5 * (1 / PetscSqrtReal(qa) + 1 / PetscSqrtReal(qb));
-    } else {
-      const PetscReal Vsum = PetscRealPart(va[0] + vb[0]);
-      if (Vsum > 0) lam = 2 * V0 / Vsum;
-    }
-    bd->coef[e] *= lam;
-    if (keep) bd->lambda[e] = lam;
-    lmin = PetscMin(lmin, lam);
-    lmax = PetscMax(lmax, lam);
-  }
+  PetscCall(PetscMalloc1(PD_SHARES * PetscMax(1, lat->nlocal), &bd->sc_shares));
+  for (PetscInt k = 0; k < PD_SHARES * lat->nlocal; k++) bd->sc_shares[k] = PetscRealPart(v[k]);
   PetscCall(VecRestoreArray(sloc, &v));
   PetscCall(VecGhostRestoreLocalForm(shares, &sloc));
   PetscCall(VecDestroy(&shares));
+  bd->sc_stencil = stencil;
+  bd->sc_ref     = stencil ? S0 : V0;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    /* no concrete, or a bar node's link or tie: nothing to correct */
+    const PetscReal lam = beta[e] == 0 ? 1 : PDBondSurfaceFactor(lat, bd, e);
+    bd->coef[e] *= lam;
+    lmin = PetscMin(lmin, lam);
+    lmax = PetscMax(lmax, lam);
+  }
+  if (!keep) PetscCall(PetscFree(bd->sc_shares));
   PetscCall(MPIU_Allreduce(&lmin, &bd->lambda_min, 1, MPIU_REAL, MPIU_MIN, lat->comm));
   PetscCall(MPIU_Allreduce(&lmax, &bd->lambda_max, 1, MPIU_REAL, MPIU_MAX, lat->comm));
   PetscFunctionReturn(0);
@@ -464,6 +453,18 @@ static PetscBool NeverDamages(const PDScene *sc, const PDLattice *lat, const Pet
   ki = node_bar[i];
   kj = node_bar[j];
   return (ki >= 0) != (kj >= 0) && sc->bar[ki >= 0 ? ki : kj].perfect ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* The stencil calibration's factor of bond e (SurfaceCorrection): its nodes' ellipsoids along its direction. */
+PetscReal PDBondSurfaceFactorStencil(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
+  const PetscReal *va = &bd->sc_shares[PD_SHARES * bd->a[e]], *vb = &bd->sc_shares[PD_SHARES * bd->b[e]];
+  PetscInt         d[3];
+  PetscReal        n2 = PDLatticeOffset(lat, bd->a[e], bd->b[e], d), qa = 0, qb = 0;
+  for (PetscInt a = 0; a < 3; a++) {
+    qa += d[a] * d[a] / n2 * PetscSqr(va[1 + a] / bd->sc_ref);
+    qb += d[a] * d[a] / n2 * PetscSqr(vb[1 + a] / bd->sc_ref);
+  }
+  return qa > 0 && qb > 0 ? 0.5 * (1 / PetscSqrtReal(qa) + 1 / PetscSqrtReal(qb)) : 1;
 }
 
 PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool keep_lambda, PDBonds *bd) {
@@ -521,7 +522,6 @@ PetscErrorCode PDBondsCreate(const PDScene *sc, const PDLattice *lat, PetscBool 
   PetscCall(BuildIncidence(lat, bd));
   bd->lambda_min = bd->lambda_max = 1;
   keep_lambda                     = keep_lambda && sc->surface_correction;
-  if (keep_lambda) PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &bd->lambda));
   if (sc->surface_correction) PetscCall(SurfaceCorrection(sc, lat, bd, beta, cut, keep_lambda));
   PetscCall(PetscFree(beta));
   PetscCall(PetscFree(cut));
@@ -542,7 +542,7 @@ PetscErrorCode PDBondsDestroy(PDBonds *bd) {
   PetscCall(PetscFree2(bd->coef, bd->material));
   PetscCall(PetscFree(bd->inc_start));
   PetscCall(PetscFree(bd->inc_bond));
-  PetscCall(PetscFree(bd->lambda));
+  PetscCall(PetscFree(bd->sc_shares));
   PetscCall(PetscFree(bd->seg));
   PetscCall(PetscFree3(bd->seg_bond, bd->seg_bar, bd->seg_coef));
   PetscFunctionReturn(0);
@@ -550,9 +550,4 @@ PetscErrorCode PDBondsDestroy(PDBonds *bd) {
 
 PetscBool PDBondCountedHere(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
   return (bd->b[e] < lat->nowned || lat->gid[bd->a[e]] < lat->gid[bd->b[e]]) ? PETSC_TRUE : PETSC_FALSE;
-}
-
-PetscInt64 PDBondGlobalId(const PDLattice *lat, const PDBonds *bd, PetscInt e) {
-  const PetscInt64 ga = lat->gid[bd->a[e]], gb = lat->gid[bd->b[e]];
-  return ga < gb ? ga * lat->nglobal + gb : gb * lat->nglobal + ga;
 }

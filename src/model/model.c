@@ -248,16 +248,6 @@ static PetscErrorCode SetupScale(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
-/* A number in [-1, 1] from a global id (splitmix64): the same bond or dof gets the same value on any
-   rank count. */
-PetscReal PDUnitFromId(PetscInt64 id) {
-  uint64_t z = (uint64_t)id + 0x9E3779B97F4A7C15ull;
-  z          = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z          = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  z ^= z >> 31;
-  return 2 * (PetscReal)(z >> 11) / (PetscReal)(1ull << 53) - 1;
-}
-
 PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBonds *bd, PDModel *m) {
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(m, sizeof *m));
@@ -311,11 +301,7 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
     PetscBool crush  = PETSC_FALSE;
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
-    if (sc->strength_scatter > 0) { /* from the bond's global id, so that any rank count draws the same */
-      PetscCall(PetscMalloc1(nb, &m->strength));
-      for (PetscInt e = 0; e < bd->nbonds; e++) m->strength[e] = 1 + sc->strength_scatter * PDUnitFromId(PDBondGlobalId(lat, bd, e));
-      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
-    }
+    m->strength_scatter = sc->strength_scatter;
     for (PetscInt k = 0; k < PD_MATERIALS_ALL; k++) m->onset[k] = PETSC_MAX_REAL;
     /* before crushing's rises exist: they only raise thresholds, so the floor holds */
     for (PetscInt e = 0; e < bd->nbonds; e++) {
@@ -400,7 +386,6 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   if (!m->softening) PetscCall(PetscFree(m->stretch)); /* scratch allocated apart (bars, -pd_eps_cu) */
   PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
   PetscCall(PetscFree(m->shift));
-  PetscCall(PetscFree(m->strength));
   PetscCall(VecDestroy(&m->dilatation));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));
   PetscFunctionReturn(0);
