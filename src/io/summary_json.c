@@ -274,8 +274,10 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
     PetscCall(PetscFree(text));
   }
   if (rec->arc_rtol > 0)
-    PetscCall(PetscFPrintf(comm, fp, "  \"equilibrium_rtol\": {\"implicit_steps\": %.3e, \"implex_steps\": %.3e},\n", (double)rec->arc_rtol,
-                           (double)rec->implex_rtol));
+    PetscCall(PetscFPrintf(
+        comm, fp,
+        "  \"equilibrium_rtol\": {\"implicit_steps\": %.3e, \"implex_steps\": %.3e},\n  \"implex_insensitive_steps\": %" PetscInt_FMT ",\n",
+        (double)rec->arc_rtol, (double)rec->implex_rtol, rec->implex_insensitive));
   if (rec->restart_from[0]) {
     PetscCall(PDEscapeJSON(rec->restart_from, &text));
     PetscCall(PetscFPrintf(comm, fp, "  \"restart\": {\"from\": %s, \"step\": %" PetscInt_FMT "},\n", text, rec->restart_step));
