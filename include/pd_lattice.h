@@ -67,10 +67,10 @@ typedef struct {
 #define PD_MATERIALS_ALL (PD_MAX_MATERIALS + 1 + PD_MAX_BARS)
 _Static_assert(PD_MATERIALS_ALL <= 256, "a bond's material is held in one byte");
 
-/* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
-   A bond between two ranks is held by both; each adds only to its own rows. */
 #define PD_SHARES 4 /* a node's family shares: volume, stiffness along x, y, z (bonds.c) */
 
+/* Bonds with at least one owned end, stored once per rank, ordered by first (owned) end.
+   A bond between two ranks is held by both; each adds only to its own rows. */
 typedef struct {
   PetscInt       nbonds;
   PetscInt64     nbonds_global; /* every bond counted once (64-bit: a global count passes 2^31 from about 30 M nodes) */

@@ -47,7 +47,6 @@ typedef struct {
   PetscReal     *kappa;                   /* largest stretch reached, committed at accepted steps */
   unsigned char *level;                   /* PDBondLevel the limiter allows the bond to reach */
   unsigned char *level_n;                 /* levels at the last accepted step, to restart a step */
-  PetscReal      strength_scatter;        /* -pd_strength_scatter: each bond's strength evaluated from its id (PDModelBondStrength) */
   PetscReal      onset[PD_MATERIALS_ALL]; /* per material, the smallest min(s0, sc) of its bonds on this rank: a
                                              bond whose stretch and history stay below it is elastic, and its
                                              thresholds need not be evaluated */
@@ -152,7 +151,8 @@ static inline PetscReal PDUnitFromId(PetscInt64 id) {
 /* Bond e's tensile strength over its law's (-pd_strength_scatter): from the bond's global id, so that any
    rank count draws the same; evaluated, not stored. */
 static inline PetscReal PDModelBondStrength(const PDModel *m, PetscInt e) {
-  return m->strength_scatter > 0 ? 1 + m->strength_scatter * PDUnitFromId(PDBondGlobalId(m->lat, m->bonds, e)) : 1;
+  const PetscReal r = m->scene->strength_scatter;
+  return r > 0 ? 1 + r * PDUnitFromId(PDBondGlobalId(m->lat, m->bonds, e)) : 1;
 }
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);

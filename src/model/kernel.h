@@ -94,7 +94,7 @@ PetscErrorCode PDModelNodalDilatation(PDModel *, const PetscReal *s);
    nominal ones. Evaluated from the nominal ones, not stored (PDLawBondThresholdsScaled). */
 static inline PDLawBond PDModelBondThresholds(const PDModel *m, PetscInt e, const PDLaw *law) {
   PDLawBond t;
-  if (!m->bonds->sc_shares && m->strength_scatter == 0 && !m->shift) return law->nominal;
+  if (!m->bonds->sc_shares && m->scene->strength_scatter == 0 && !m->shift) return law->nominal;
   PDLawBondThresholdsScaled(law, m->bonds->sc_shares ? PDBondSurfaceFactor(m->lat, m->bonds, e) : 1, PDModelBondStrength(m, e), &t);
   if (m->shift) PDLawBondRaise(&t, m->shift[e]);
   return t;

@@ -301,7 +301,6 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
     m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
     PetscBool crush  = PETSC_FALSE;
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
-    m->strength_scatter = sc->strength_scatter;
     for (PetscInt k = 0; k < PD_MATERIALS_ALL; k++) m->onset[k] = PETSC_MAX_REAL;
     /* before crushing's rises exist: they only raise thresholds, so the floor holds */
     for (PetscInt e = 0; e < bd->nbonds; e++) {

@@ -832,9 +832,9 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   PetscCall(PetscStrncpy(rec->status, "completed", sizeof rec->status));
   while (path.step < maxsteps) {
     PDCurveRow row;
-    PetscInt   max_events = 0;
-    PetscReal  implex_err = 0;
-    PetscBool  insensitive;
+    PetscInt   max_events  = 0;
+    PetscReal  implex_err  = 0;
+    PetscBool  insensitive = PETSC_FALSE;
     PetscBool  ok, stop = PETSC_FALSE;
     PetscReal  len = a.type == ARC_LOAD ? PetscMin(a.dlam, sc->lambda_max - path.lambda_n) : a.dl;
 
@@ -903,7 +903,6 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
         a.rejects++;
         continue;
       }
-      if (insensitive) rec->implex_insensitive++;
       a.rejects = 0;
     }
     d_prev = rec->nrows ? rec->rows[rec->nrows - 1].dissipated : 0; /* the energy of u_n, from its curve row */
@@ -929,6 +928,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     if (path.step == 0) a.psi2 = a.vnorm * a.vnorm; /* spherical scaling from the first, elastic, direction */
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
+    if (insensitive) rec->implex_insensitive++;
     PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
     if (a.kx_n) { /* the histories move on by a step: the oldest buffer takes the new one */
       PetscReal *t = a.kx_prev;
