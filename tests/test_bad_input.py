@@ -109,6 +109,7 @@ def checkpoint_cases():
     for what, edit in (("arc_length", lambda f: f.attrs.modify("arc_length", np.nan)),
                        ("kappa", lambda f: f["kappa"].__setitem__(Ellipsis, 1e300)),
                        ("level", lambda f: f["level"].__setitem__(Ellipsis, 0.5)),
+                       ("kappa_length", lambda f: f.create_dataset("kappa", data=np.zeros(f.pop("kappa").shape[0] + 1))),
                        ("displacement", lambda f: f["displacement"].__setitem__(0, np.inf)),
                        ("steps", lambda f: f.attrs.modify("steps", np.int32(-3))),
                        ("curve", lambda f: f["curve"].__setitem__(5, np.nan))):

@@ -16,6 +16,7 @@
      refused before any output is written.
    The file is written under a temporary name and renamed once complete. */
 #include "pd_io.h"
+#include "checkpoint_bonds.h"
 #include "kernel.h"
 #include <petscviewerhdf5.h>
 #include <stdio.h>
@@ -57,15 +58,6 @@ static PetscErrorCode Fingerprint(const PDModel *m, PetscReal fp[NFINGERPRINT]) 
 
 static const char *const total_names[] = {"steps", "newton_its", "ksp_its", "max_events_per_iteration", "jacobian_assemblies"};
 #define NTOTALS 5
-/* A largest stretch beyond this is no state a path reaches; it only guards the arithmetic (kappa^2). */
-#define PD_KAPPA_MAX 1e6
-
-static PetscErrorCode IncidenceVec(const PDModel *m, const char *name, Vec *v);
-static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level);
-/* bar segments: plastic stretch, rupture (0 or 1), dissipated energy (J), over the same entries */
-static const char *const steel_names[] = {"steel_plastic_stretch", "steel_ruptured", "steel_dissipated"};
-static PetscErrorCode    SteelVecs(const PDModel *m, Vec v[3]);
-
 /* Whether every rank's values pass (collective). */
 static PetscErrorCode AllPass(MPI_Comm comm, PetscBool mine, PetscBool *all) {
   PetscFunctionBeginUser;
@@ -103,7 +95,7 @@ static PetscErrorCode CheckValues(const PDModel *m, PetscViewer v, PetscInt nvec
   PetscInt        total[NTOTALS], nrows;
   PetscBool       ok, has;
   const PetscReal zero = 0;
-  Vec             x, y;
+  Vec             x;
 
   PetscFunctionBeginUser;
   bad[0] = '\0';
@@ -153,49 +145,23 @@ static PetscErrorCode CheckValues(const PDModel *m, PetscViewer v, PetscInt nvec
     PetscFunctionReturn(0);
   }
   if (m->scene->nbars) {
-    Vec s[3];
-    PetscCall(SteelVecs(m, s));
-    for (PetscInt k = 0; k < 3; k++) {
-      PetscCall(PetscViewerHDF5HasDataset(v, steel_names[k], &ok));
-      if (ok) PetscCall(VecLoad(s[k], v));
-      if (ok) PetscCall(VecInRange(s[k], k == 2 ? 0 : -PD_KAPPA_MAX, k == 1 ? 1 : PD_KAPPA_MAX, 0, -1, &ok));
-      PetscCall(VecDestroy(&s[k]));
+    for (PDBondField f = PD_BOND_STEEL_PLASTIC; f <= PD_BOND_STEEL_DISSIPATED; f++) {
+      PetscCall(PDBondFieldCheck(m, f, v, &ok));
       if (!ok) {
-        PetscCall(PetscSNPrintf(bad, len, "its %s is missing, not finite or out of range", steel_names[k]));
-        for (PetscInt l = k + 1; l < 3; l++) PetscCall(VecDestroy(&s[l]));
+        PetscCall(PetscSNPrintf(bad, len, "its %s is missing, not finite or out of range", PDBondFieldNames[f]));
         PetscFunctionReturn(0);
       }
     }
   }
   if (!m->softening) PetscFunctionReturn(0);
-  PetscCall(HistoryVecs(m, &x, &y));
-  PetscCall(VecLoad(x, v));
-  PetscCall(VecLoad(y, v));
-  PetscCall(VecInRange(x, 0, PD_KAPPA_MAX, 0, -1, &ok));
-  if (!ok) PetscCall(PetscSNPrintf(bad, len, "a bond history (largest stretch) is not finite or outside [0, %g]", PD_KAPPA_MAX));
+  PetscCall(PDBondFieldCheck(m, PD_BOND_KAPPA, v, &ok));
+  if (!ok) PetscCall(PetscSNPrintf(bad, len, "a bond history (largest stretch) is missing, not finite or outside [0, %g]", PD_KAPPA_MAX));
   if (ok) {
-    const PetscScalar *l;
-    PetscInt           n;
-    PetscBool          mine = PETSC_TRUE;
-    PetscCall(VecInRange(y, 0, 255, 0, -1, &ok));
-    PetscCall(VecGetLocalSize(y, &n));
-    PetscCall(VecGetArrayRead(y, &l));
-    for (PetscInt i = 0; i < n && ok; i++)
-      if (PetscRealPart(l[i]) != PetscFloorReal(PetscRealPart(l[i]))) mine = PETSC_FALSE;
-    PetscCall(VecRestoreArrayRead(y, &l));
-    if (ok) PetscCall(AllPass(comm, mine, &ok));
-    if (!ok) PetscCall(PetscSNPrintf(bad, len, "a limiter level is not a whole number from 0 to 255"));
+    PetscCall(PDBondFieldCheck(m, PD_BOND_LEVEL, v, &ok));
+    if (!ok) PetscCall(PetscSNPrintf(bad, len, "a limiter level is missing or not a whole number from 0 to 255"));
   }
-  PetscCall(VecDestroy(&x));
-  PetscCall(VecDestroy(&y));
   if (ok && m->shift) { /* crushing's rises: present, finite, not negative */
-    PetscCall(PetscViewerHDF5HasDataset(v, "threshold_rise", &ok));
-    if (ok) {
-      PetscCall(IncidenceVec(m, "threshold_rise", &x));
-      PetscCall(VecLoad(x, v));
-      PetscCall(VecInRange(x, 0, PD_KAPPA_MAX, 0, -1, &ok));
-      PetscCall(VecDestroy(&x));
-    }
+    PetscCall(PDBondFieldCheck(m, PD_BOND_RISE, v, &ok));
     if (!ok) PetscCall(PetscSNPrintf(bad, len, "its threshold rises (-pd_fc) are missing, not finite or outside [0, %g]", PD_KAPPA_MAX));
   }
   PetscFunctionReturn(0);
@@ -300,177 +266,20 @@ static void RowUnpack(const PetscScalar *a, PDCurveRow *r) {
   r->steel_stress = PetscRealPart(a[15]);
 }
 
-/* The state of the bar segments over the same incidence entries (0 where a bond has none): plastic
-   stretch, 1 for a broken segment, and the energy the segment has dissipated. */
-static PetscErrorCode SteelVecs(const PDModel *m, Vec v[3]) {
-  PetscFunctionBeginUser;
-  PetscCall(HistoryVecs(m, &v[0], &v[1]));
-  PetscCall(VecDuplicate(v[0], &v[2]));
-  for (PetscInt k = 0; k < 3; k++) PetscCall(PetscObjectSetName((PetscObject)v[k], steel_names[k]));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode WriteSteel(const PDModel *m, PetscViewer viewer) {
-  const PDBonds *bd = m->bonds;
-  Vec            v[3];
-  PetscScalar   *a[3];
-
-  PetscFunctionBeginUser;
-  PetscCall(SteelVecs(m, v));
-  for (PetscInt k = 0; k < 3; k++) PetscCall(VecGetArray(v[k], &a[k]));
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt sg = bd->seg[bd->inc_bond[p]];
-    a[0][p]           = sg >= 0 ? m->sp_n[sg] : 0;
-    a[1][p]           = sg >= 0 && m->ruptured_n[sg] ? 1 : 0;
-    a[2][p]           = sg >= 0 ? m->dissipated_n[sg] : 0;
-  }
-  for (PetscInt k = 0; k < 3; k++) {
-    PetscCall(VecRestoreArray(v[k], &a[k]));
-    PetscCall(VecView(v[k], viewer));
-    PetscCall(VecDestroy(&v[k]));
-  }
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode ReadSteel(PDModel *m, PetscViewer viewer) {
-  const PDBonds     *bd = m->bonds;
-  Vec                v[3];
-  const PetscScalar *a[3];
-
-  PetscFunctionBeginUser;
-  PetscCall(SteelVecs(m, v));
-  for (PetscInt k = 0; k < 3; k++) {
-    PetscCall(VecLoad(v[k], viewer));
-    PetscCall(VecGetArrayRead(v[k], &a[k]));
-  }
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt sg = bd->seg[bd->inc_bond[p]];
-    if (sg < 0) continue;
-    m->sp_n[sg]         = PetscRealPart(a[0][p]);
-    m->ruptured_n[sg]   = PetscRealPart(a[1][p]) > 0.5 ? PETSC_TRUE : PETSC_FALSE;
-    m->dissipated_n[sg] = PetscRealPart(a[2][p]);
-  }
-  for (PetscInt k = 0; k < 3; k++) {
-    PetscCall(VecRestoreArrayRead(v[k], &a[k]));
-    PetscCall(VecDestroy(&v[k]));
-  }
-  PetscCall(PDModelCountDamage(m));
-  PetscFunctionReturn(0);
-}
-
-/* A per-bond quantity as a vector over the incidence entries of owned nodes (see the head of the file). */
-static PetscErrorCode IncidenceVec(const PDModel *m, const char *name, Vec *v) {
-  PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(m->lat->comm, m->bonds->inc_start[m->lat->nowned], PETSC_DETERMINE, v));
-  PetscCall(PetscObjectSetName((PetscObject)*v, name));
-  PetscFunctionReturn(0);
-}
-
-/* Bond history as two such vectors. */
-static PetscErrorCode HistoryVecs(const PDModel *m, Vec *kappa, Vec *level) {
-  PetscFunctionBeginUser;
-  PetscCall(IncidenceVec(m, "kappa", kappa));
-  PetscCall(IncidenceVec(m, "level", level));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode WriteHistory(const PDModel *m, const PetscReal *kappa_prev, PetscViewer v) {
-  const PDBonds *bd = m->bonds;
-  Vec            K, L, Kp   = NULL;
-  PetscScalar   *k, *l, *kp = NULL;
-
-  PetscFunctionBeginUser;
-  PetscCall(HistoryVecs(m, &K, &L));
-  if (kappa_prev) {
-    PetscCall(VecDuplicate(K, &Kp));
-    PetscCall(PetscObjectSetName((PetscObject)Kp, "kappa_previous"));
-    PetscCall(VecGetArray(Kp, &kp));
-  }
-  PetscCall(VecGetArray(K, &k));
-  PetscCall(VecGetArray(L, &l));
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    k[p] = m->kappa[bd->inc_bond[p]];
-    l[p] = m->level_n[bd->inc_bond[p]];
-    if (kp) kp[p] = kappa_prev[bd->inc_bond[p]];
-  }
-  PetscCall(VecRestoreArray(K, &k));
-  PetscCall(VecRestoreArray(L, &l));
-  PetscCall(VecView(K, v));
-  PetscCall(VecView(L, v));
-  if (Kp) {
-    PetscCall(VecRestoreArray(Kp, &kp));
-    PetscCall(VecView(Kp, v));
-  }
-  PetscCall(VecDestroy(&K));
-  PetscCall(VecDestroy(&L));
-  PetscCall(VecDestroy(&Kp));
-  if (m->shift) { /* crushing's rise of the thresholds, over the same entries */
-    PetscCall(IncidenceVec(m, "threshold_rise", &K));
-    PetscCall(VecGetArray(K, &k));
-    for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) k[p] = m->shift[bd->inc_bond[p]];
-    PetscCall(VecRestoreArray(K, &k));
-    PetscCall(VecView(K, v));
-    PetscCall(VecDestroy(&K));
-  }
-  PetscFunctionReturn(0);
-}
-
-/* Crushing's rise of the thresholds from the file, before the levels that depend on them. A bond with
-   both ends owned is read twice: the rise is set, not added. */
-static PetscErrorCode ReadRise(PDModel *m, PetscViewer v) {
-  const PDBonds     *bd = m->bonds;
-  Vec                R;
-  const PetscScalar *r;
-
-  PetscFunctionBeginUser;
-  PetscCall(IncidenceVec(m, "threshold_rise", &R));
-  PetscCall(VecLoad(R, v));
-  PetscCall(VecGetArrayRead(R, &r));
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) m->shift[bd->inc_bond[p]] = PetscRealPart(r[p]);
-  PetscCall(VecRestoreArrayRead(R, &r));
-  PetscCall(VecDestroy(&R));
-  PetscFunctionReturn(0);
-}
-
-/* Every bond has an owned end, so every bond is read; a bond with both ends owned is read twice, equal.
-   kappa_prev (when the driver asks for it) is the history a step earlier, or kappa where the file has none
-   (written by a driver that kept none). */
+/* kappa_prev, where the driver keeps one (IMPL-EX), is the history a step earlier; it reads as kappa from a
+   file written by a driver that kept none. The rises come first: the levels' thresholds depend on them. */
 static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer v) {
-  const PDBonds     *bd = m->bonds;
-  Vec                K, L, Kp   = NULL;
-  const PetscScalar *k, *l, *kp = NULL;
-  PetscBool          has = PETSC_FALSE;
+  PetscBool has = PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  if (m->shift) PetscCall(ReadRise(m, v));
-  PetscCall(HistoryVecs(m, &K, &L));
-  PetscCall(VecLoad(K, v));
-  PetscCall(VecLoad(L, v));
-  if (kappa_prev) PetscCall(PetscViewerHDF5HasDataset(v, "kappa_previous", &has));
-  if (has) {
-    PetscCall(VecDuplicate(K, &Kp));
-    PetscCall(PetscObjectSetName((PetscObject)Kp, "kappa_previous"));
-    PetscCall(VecLoad(Kp, v));
-    PetscCall(VecGetArrayRead(Kp, &kp));
-  }
-  PetscCall(VecGetArrayRead(K, &k));
-  PetscCall(VecGetArrayRead(L, &l));
-  for (PetscInt p = 0; p < bd->inc_start[m->lat->nowned]; p++) {
-    const PetscInt  e   = bd->inc_bond[p];
-    const PDLaw    *law = &m->law[bd->material[e]];
-    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
-    m->kappa[e] = PetscRealPart(k[p]);
-    /* at least the level its history has passed: a leg may run with other -pd_limiter_sublevels */
-    m->level[e] = m->level_n[e] =
-        (unsigned char)PetscMin(PetscMax((PetscInt)PetscRealPart(l[p]), PDLawLevelOf(law, t, m->kappa[e])), law->sublevels + 1);
-    if (kappa_prev) kappa_prev[e] = kp ? PetscRealPart(kp[p]) : m->kappa[e];
-  }
-  PetscCall(VecRestoreArrayRead(K, &k));
-  PetscCall(VecRestoreArrayRead(L, &l));
-  if (Kp) PetscCall(VecRestoreArrayRead(Kp, &kp));
-  PetscCall(VecDestroy(&K));
-  PetscCall(VecDestroy(&L));
-  PetscCall(VecDestroy(&Kp));
+  if (m->shift) PetscCall(PDBondFieldRead(m, NULL, PD_BOND_RISE, v));
+  PetscCall(PDBondFieldRead(m, NULL, PD_BOND_KAPPA, v));
+  PetscCall(PDBondFieldRead(m, NULL, PD_BOND_LEVEL, v));
+  if (kappa_prev) PetscCall(PetscViewerHDF5HasDataset(v, PDBondFieldNames[PD_BOND_KAPPA_PREVIOUS], &has));
+  if (has)
+    PetscCall(PDBondFieldRead(m, kappa_prev, PD_BOND_KAPPA_PREVIOUS, v));
+  else if (kappa_prev)
+    for (PetscInt p = 0; p < m->bonds->inc_start[m->lat->nowned]; p++) kappa_prev[m->bonds->inc_bond[p]] = m->kappa[m->bonds->inc_bond[p]];
   PetscCall(PDModelCountDamage(m));
   PetscFunctionReturn(0);
 }
@@ -607,8 +416,8 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(WriteRows(comm, rec, v));
   if (m->lat->nbarnodes) PetscCall(WriteRowColumn(comm, rec, COLUMN_SLIP, v));
   if (PDSceneHasCrushingStrain(m->scene)) PetscCall(WriteRowColumn(comm, rec, COLUMN_STRAIN_MIN, v));
-  if (m->softening) PetscCall(WriteHistory(m, kappa_prev, v));
-  if (m->scene->nbars) PetscCall(WriteSteel(m, v));
+  for (PDBondField f = PD_BOND_KAPPA; f <= PD_BOND_STEEL_DISSIPATED; f++)
+    if (PDBondFieldKept(m, kappa_prev, f)) PetscCall(PDBondFieldWrite(m, kappa_prev, f, v));
   for (PetscInt k = 0; k < nvec; k++) {
     PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
     PetscCall(VecView(vec[k], v));
@@ -637,7 +446,10 @@ PetscErrorCode PDCheckpointRead(PDModel *m, PDRecord *rec, const char *path, Pet
   for (PetscInt k = 0; k < nreal; k++) PetscCall(PetscViewerHDF5ReadAttribute(v, "/", real_name[k], PETSC_REAL, &zero, &real[k]));
   PetscCall(ReadRows(comm, rec, nrows, m->lat->nbarnodes > 0 ? PETSC_TRUE : PETSC_FALSE, v));
   if (m->softening) PetscCall(ReadHistory(m, kappa_prev, v));
-  if (m->scene->nbars) PetscCall(ReadSteel(m, v));
+  if (m->scene->nbars) {
+    for (PDBondField f = PD_BOND_STEEL_PLASTIC; f <= PD_BOND_STEEL_DISSIPATED; f++) PetscCall(PDBondFieldRead(m, NULL, f, v));
+    PetscCall(PDModelCountDamage(m));
+  }
   for (PetscInt k = 0; k < nvec; k++) {
     PetscCall(PetscObjectSetName((PetscObject)vec[k], vec_name[k]));
     PetscCall(VecLoad(vec[k], v));
