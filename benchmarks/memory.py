@@ -20,13 +20,15 @@ PATH = ["-pd_control", "arclength", "-pd_stop_fraction", "0.1", "-pd_arclength_i
 # corrector's, both FGMRES(60), whose basis grows with the iterations a solve reaches; the preconditioning
 # matrix's reach (docs/solvers.md), whose matrix and GAMG set-up scale with its bonds; GAMG's Galerkin
 # products on two ranks, all at once by default (src/solve/static.c), against the algorithm PETSc itself
-# picks for this matrix, which keeps intermediate products for reuse; checkpoints as the size-effect study
+# picks for this matrix, which keeps intermediate products for reuse; GAMG's prolongators without their smoothing
+# (no product of the matrix with them, sparser coarse levels); checkpoints as the size-effect study
 # writes them, whose per-bond datasets are written while the solver's structures are alive
 CONFIGS = {"default": [],
            "checkpoints every 25 steps": ["-pd_checkpoint_every", "25"],
            "Krylov restart 30": ["-ksp_gmres_restart", "30", "-pd_augmented_ksp_gmres_restart", "30"],
            "preconditioning reach 1.75": ["-pd_pc_reach", "1.75"],
            "Galerkin products kept for reuse": ["-matptap_via", "nonscalable"],
+           "GAMG unsmoothed aggregation": ["-pc_gamg_agg_nsmooths", "0"],
            "one rank": []}
 RANKS = {"one rank": 1}  # the others run on --ranks
 

@@ -52,7 +52,6 @@ typedef struct {
                                              thresholds need not be evaluated */
   PetscReal     *shift;                   /* [nbonds] rise of the thresholds under compression (-pd_fc), or NULL */
   Vec            dilatation;              /* ghosted nodal dilatation for that rise, or NULL */
-  PetscReal     *stretch;                 /* per-bond scratch of the limiter and the history update */
   unsigned char *branch;                  /* path following: per-bond PDBranch frozen for a stage, or NULL */
   PetscInt       limiter_max;             /* bond events granted per Newton iteration; 0: no cap */
   PetscReal      pc_reach;                /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
@@ -121,13 +120,12 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
-/* The strain state at u: every local bond's stretch into m->stretch and, where a criterion or a law reads
-   it (-pd_fc, -pd_eps_cu), the nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */
+/* The strain state at u that outlives it: where a criterion or a law reads it (-pd_fc, -pd_eps_cu), the
+   nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */
 PetscErrorCode PDModelStrainState(PDModel *, Vec u);
 /* Crushing (-pd_fc): raises the thresholds of bonds still elastic by their law's confine times the
    compression of their two nodes, from the last strain state; a rise is never taken back. */
 PetscErrorCode PDModelConfine(PDModel *);
-PetscErrorCode PDModelStretchesAt(PDModel *, Vec u, PetscReal *s);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);
 PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscInt *nkink);
@@ -159,6 +157,6 @@ PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
 /* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars), and the
    largest |slip| of a bar node with bond slip along its bar, against the node it shadows (m; 0 without). */
 PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress, PetscReal *slip);
-/* The bond closest to crushing (-pd_eps_cu) at u, or with u NULL at the last strain state (an accepted
-   step's, which PDModelCommitHistory took). */
-PetscErrorCode PDModelCrushing(PDModel *, Vec u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]);
+/* The bond closest to crushing (-pd_eps_cu) at u; strain_state_at_u where the last strain state is u's
+   already (an accepted step's, which PDModelCommitHistory took), so that its dilatations are not taken again. */
+PetscErrorCode PDModelCrushing(PDModel *, Vec u, PetscBool strain_state_at_u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]);

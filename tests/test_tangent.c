@@ -74,7 +74,7 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
     Vec                loc;
     PetscCall(PetscMalloc1(bd.nbonds, &s));
     PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
-    PetscCall(PDModelStretches(&m, ul, s));
+    for (PetscInt e = 0; e < bd.nbonds; e++) s[e] = PDModelBondStretch(&m, ul, e);
     PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
     for (PetscInt e = 0; m.softening && e < bd.nbonds; e++) {
       m.kappa[e] = PetscMax(0, 0.5 * s[e]);

@@ -10,7 +10,7 @@
 /* Dilatation of each owned node, theta = dim sum w s / sum w over its bonds with w = c |xi|^2: for a
    homogeneous strain eps, the mean of s = n.eps.n over a symmetric family is tr(eps) / dim. Ghosts by
    the ghosted vector. */
-PetscErrorCode PDModelNodalDilatation(PDModel *m, const PetscReal *s) {
+PetscErrorCode PDModelNodalDilatation(PDModel *m, const PetscScalar *u) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   PetscScalar     *th;
@@ -25,7 +25,7 @@ PetscErrorCode PDModelNodalDilatation(PDModel *m, const PetscReal *s) {
       PetscReal        w = 0;
       for (PetscInt a = 0; a < 3; a++) w += (xb[a] - xa[a]) * (xb[a] - xa[a]);
       w *= bd->coef[e];
-      num += w * s[e];
+      num += w * PDModelBondStretch(m, u, e);
       den += w;
     }
     th[i] = den > 0 ? lat->dim * num / den : 0;

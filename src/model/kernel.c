@@ -443,40 +443,28 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *m, const PetscScalar *u, const 
   PetscFunctionReturn(0);
 }
 
-/* Small kinematics: BondState's stretch, without the length it has no use for. */
-static inline void StretchesSmall(PetscInt bs, const PDBonds *bd, const PetscReal *restrict x, const PetscScalar *restrict u,
-                                  PetscReal *restrict s) {
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt a     = bd->a[e];
-    PetscReal      xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2;
-    for (PetscInt r = 0; r < bs; r++) {
-      xa[r] = x[3 * a + r];
-      ua[r] = PetscRealPart(u[bs * a + r]);
-    }
-    s[e] = Projection(bs, x, u, bd->b[e], xa, ua, xi, &L2) / L2;
-  }
-}
-
-/* Stretch of every bond at u, for the limiter and the history update. */
-PetscErrorCode PDModelStretches(PDModel *m, const PetscScalar *u, PetscReal *s) {
+/* One bond's stretch at the local displacements u, for the limiter, the history update, the branches and
+   the crushing criterion: evaluated where it is read rather than kept per bond. Under small kinematics
+   BondState's stretch without the length it has no use for. A bond-slip link's history is its largest
+   |s|, so its users see |s|. */
+PetscReal PDModelBondStretch(const PDModel *m, const PetscScalar *u, PetscInt e) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
+  const PetscInt   bs = m->bs, a = bd->a[e];
+  PetscReal        s;
 
-  PetscFunctionBeginUser;
   if (m->scene->kinematics == PD_KINEMATICS_SMALL) {
-    if (m->bs == 3)
-      StretchesSmall(3, bd, lat->x, u, s);
-    else
-      StretchesSmall(m->bs, bd, lat->x, u, s);
-  } else
-    for (PetscInt e = 0; e < bd->nbonds; e++) {
-      PetscReal dir[3], L0, L, q;
-      BondState(m->scene, m->bs, &lat->x[3 * bd->a[e]], &lat->x[3 * bd->b[e]], &u[m->bs * bd->a[e]], &u[m->bs * bd->b[e]], dir, &L0, &L,
-                &s[e], &q);
+    PetscReal xa[3] = {0, 0, 0}, ua[3] = {0, 0, 0}, xi[3], L2;
+    for (PetscInt r = 0; r < bs; r++) {
+      xa[r] = lat->x[3 * a + r];
+      ua[r] = PetscRealPart(u[bs * a + r]);
     }
-  /* a bond-slip link's history is its largest |s|: the history's users (limiter, commit, branches) see |s| */
-  for (PetscInt k = 0; k < m->nslip; k++) s[m->slip_bond[k]] = PetscAbsReal(s[m->slip_bond[k]]);
-  PetscFunctionReturn(0);
+    s = Projection(bs, lat->x, u, bd->b[e], xa, ua, xi, &L2) / L2;
+  } else {
+    PetscReal dir[3], L0, L, q;
+    BondState(m->scene, bs, &lat->x[3 * a], &lat->x[3 * bd->b[e]], &u[bs * a], &u[bs * bd->b[e]], dir, &L0, &L, &s, &q);
+  }
+  return m->law[bd->material[e]].kind == PD_LAW_SLIP ? PetscAbsReal(s) : s;
 }
 
 /* Commits one bond's state at stretch s: the largest stretch of its concrete (the explicit path, which has
@@ -555,7 +543,7 @@ static inline PetscBool NodeHeld(const PDModel *m, PetscInt i) {
    bond-based lattice strains well beyond the body's mean. Of ratios equal to PD_CRUSH_TIE the bond of the
    smallest global id (*gid): a symmetric body has many such, whose order the solver's round-off would
    decide, and any rank count should name the same. *ratio stays -PETSC_MAX_REAL where no bond counts. */
-void PDModelCrushingLocal(PDModel *m, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
+void PDModelCrushingLocal(PDModel *m, const PetscScalar *u, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
                           PetscReal at[3]) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
@@ -564,17 +552,19 @@ void PDModelCrushingLocal(PDModel *m, const PetscReal *s, const PetscScalar *the
   *s_min               = 0;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e], k = bd->material[e];
-    PetscReal      r;
+    PetscReal      r, s;
     PetscInt64     id;
-    if (k >= PD_MAX_MATERIALS || m->scene->material[k].eps_cu <= 0 || s[e] >= 0) continue;
+    if (k >= PD_MAX_MATERIALS || m->scene->material[k].eps_cu <= 0) continue;
     if (PetscRealPart(theta[i]) >= 0 || PetscRealPart(theta[j]) >= 0 || NodeHeld(m, i) || NodeHeld(m, j)) continue;
-    r = -s[e] / m->scene->material[k].eps_cu;
+    s = PDModelBondStretch(m, u, e);
+    if (s >= 0) continue;
+    r = -s / m->scene->material[k].eps_cu;
     if (r < *ratio * (1 - PD_CRUSH_TIE)) continue;
     id = PDBondGlobalId(lat, bd, e);
     if (r <= *ratio * (1 + PD_CRUSH_TIE) && id >= *gid) continue;
     *ratio = r;
     *gid   = id;
-    *s_min = s[e];
+    *s_min = s;
     for (PetscInt a = 0; a < 3; a++) at[a] = 0.5 * (lat->x[3 * i + a] + lat->x[3 * j + a]);
   }
 }

@@ -79,16 +79,16 @@ PetscErrorCode           PDModelEnergiesLocal(PDModel *, const PetscScalar *u, P
 /* scaled: ka holds ka / |xi|^2 (small kinematics, kb NULL) */
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
                                         const PetscScalar *x, PetscScalar *y);
-PetscErrorCode PDModelStretches(PDModel *, const PetscScalar *u, PetscReal *s);
+PetscReal      PDModelBondStretch(const PDModel *, const PetscScalar *u, PetscInt e);
 void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
 #define PD_CRUSH_TIE 1e-6 /* relative difference of two bonds' compression below which they tie */
-void PDModelCrushingLocal(PDModel *, const PetscReal *s, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
+void PDModelCrushingLocal(PDModel *, const PetscScalar *u, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
                           PetscReal at[3]);
-/* m->dilatation (ghosted) from the bond stretches s (confinement.c) */
-PetscErrorCode PDModelNodalDilatation(PDModel *, const PetscReal *s);
+/* m->dilatation (ghosted) from the bond stretches at the local displacements u (confinement.c) */
+PetscErrorCode PDModelNodalDilatation(PDModel *, const PetscScalar *u);
 
 /* A bond's stretch thresholds: its own (surface correction, strength scatter, crushing's rise) or its law's
    nominal ones. Evaluated from the nominal ones, not stored (PDLawBondThresholdsScaled). */

@@ -297,8 +297,8 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->history_bytes = 0;
   if (m->softening) {
     const PetscInt nb = PetscMax(1, bd->nbonds);
-    PetscCall(PetscCalloc4(nb, &m->kappa, nb, &m->level, nb, &m->level_n, nb, &m->stretch));
-    m->history_bytes = (PetscInt64)bd->nbonds * (2 * sizeof(PetscReal) + 2); /* kappa, scratch stretch, two levels */
+    PetscCall(PetscCalloc3(nb, &m->kappa, nb, &m->level, nb, &m->level_n));
+    m->history_bytes = (PetscInt64)bd->nbonds * (sizeof(PetscReal) + 2); /* kappa, two levels */
     PetscBool crush  = PETSC_FALSE;
     for (PetscInt k = 0; k < sc->nmaterials; k++) crush = crush || m->law[k].confine > 0 ? PETSC_TRUE : PETSC_FALSE;
     for (PetscInt k = 0; k < PD_MATERIALS_ALL; k++) m->onset[k] = PETSC_MAX_REAL;
@@ -325,15 +325,8 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
       }
     if (!pass) PetscCall(PetscMalloc1(PetscMax(1, m->nslip), &m->slip_bond));
   }
-  {
-    const PetscBool limit = PDSceneHasCrushingStrain(sc); /* the crushing criterion needs stretches and dilatations */
-    if (m->shift || limit) PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
-    /* the commit's and the criterion's scratch, where no history came with it */
-    if (!m->softening && (sc->nbars || limit)) {
-      PetscCall(PetscMalloc1(PetscMax(1, bd->nbonds), &m->stretch));
-      m->history_bytes += (PetscInt64)bd->nbonds * sizeof(PetscReal);
-    }
-  }
+  /* crushing's rises and the crushing criterion read the nodes' dilatation */
+  if (m->shift || PDSceneHasCrushingStrain(sc)) PetscCall(PDLatticeCreateGhostVec(lat, 1, &m->dilatation));
   if (sc->nbars) {
     PetscCall(
         PetscCalloc3(PetscMax(1, bd->nseg), &m->sp_n, PetscMax(1, bd->nseg), &m->ruptured_n, PetscMax(1, bd->nseg), &m->dissipated_n));
@@ -382,8 +375,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PDModelRowIndexDestroy(m));
   PetscCall(PetscFree(m->kb));
   PetscCall(PetscFree(m->kp));
-  if (!m->softening) PetscCall(PetscFree(m->stretch)); /* scratch allocated apart (bars, -pd_eps_cu) */
-  PetscCall(PetscFree4(m->kappa, m->level, m->level_n, m->stretch));
+  PetscCall(PetscFree3(m->kappa, m->level, m->level_n));
   PetscCall(PetscFree(m->shift));
   PetscCall(VecDestroy(&m->dilatation));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));
@@ -417,20 +409,13 @@ PetscErrorCode PDModelRestoreLocal(PDModel *m, const PetscScalar **ul, Vec *loc)
 }
 
 PetscErrorCode PDModelStrainState(PDModel *m, Vec u) {
-  PetscFunctionBeginUser;
-  PetscCall(PDModelStretchesAt(m, u, m->stretch));
-  if (m->dilatation) PetscCall(PDModelNodalDilatation(m, m->stretch));
-  PetscFunctionReturn(0);
-}
-
-/* Stretches of all local bonds at u, with constrained dofs lifted to their prescribed values. */
-PetscErrorCode PDModelStretchesAt(PDModel *m, Vec u, PetscReal *s) {
   const PetscScalar *ul;
   Vec                loc;
 
   PetscFunctionBeginUser;
+  if (!m->dilatation) PetscFunctionReturn(0);
   PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
-  PetscCall(PDModelStretches(m, ul, s));
+  PetscCall(PDModelNodalDilatation(m, ul));
   PetscCall(PDModelRestoreLocal(m, &ul, &loc));
   PetscFunctionReturn(0);
 }
@@ -762,9 +747,9 @@ PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress, PetscRea
 /* The bond closest to crushing over all ranks (PDModelCrushingLocal): -s / eps_cu, its stretch s and its
    midpoint; of ratios that tie the smallest global bond id, from the lowest rank that holds it (a bond
    with a ghost end is held by two). Off (ratio -PETSC_MAX_REAL, s 0) where no material has -pd_eps_cu. */
-PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]) {
-  const PetscScalar *th;
-  Vec                loc;
+PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscBool strain_state_at_u, PetscReal *ratio, PetscReal *s_min, PetscReal at[3]) {
+  const PetscScalar *th, *ul;
+  Vec                loc, uloc;
   PetscReal          mine, top, buf[5] = {0, 0, 0, 0, 0};
   PetscInt64         gid, gmin;
   PetscMPIInt        rank, size, holder, cand;
@@ -774,13 +759,15 @@ PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscReal *ratio, PetscReal *s
   *s_min = 0;
   for (PetscInt a = 0; a < 3; a++) at[a] = 0;
   if (!PDSceneHasCrushingStrain(m->scene)) PetscFunctionReturn(0);
-  if (u) PetscCall(PDModelStrainState(m, u));
+  if (!strain_state_at_u) PetscCall(PDModelStrainState(m, u));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
   PetscCall(VecGetArrayRead(loc, &th));
-  PDModelCrushingLocal(m, m->stretch, th, &mine, &gid, &buf[1], &buf[2]);
+  PDModelCrushingLocal(m, ul, th, &mine, &gid, &buf[1], &buf[2]);
   buf[0] = mine;
   PetscCall(VecRestoreArrayRead(loc, &th));
   PetscCall(VecGhostRestoreLocalForm(m->dilatation, &loc));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(&mine, &top, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
   PetscCallMPI(MPI_Comm_rank(m->lat->comm, &rank));
   PetscCallMPI(MPI_Comm_size(m->lat->comm, &size));

@@ -354,18 +354,25 @@ static PetscErrorCode ImplexExtrapolate(Arc *a, PetscReal r) {
    history, max(kappa_n, s(u)), and of the extrapolated one the step used (the softening laws lose most of
    their force just past s0, so a difference in stretch would say little). */
 static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
-  PDModel  *m    = a->m;
-  PetscReal mine = 0, dd;
+  PDModel           *m    = a->m;
+  PetscReal          mine = 0, dd;
+  const PetscScalar *ul;
+  Vec                uloc;
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelStretchesAt(m, a->u, m->stretch));
+  PetscCall(PDModelScatterToLocal(m, a->u, &ul, &uloc));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
-    const PDLaw    *law = &m->law[m->bonds->material[e]];
-    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
-    const PetscReal k = PetscMax(a->kx_n[e], m->stretch[e]);
-    if (law->kind == PD_LAW_ELASTIC || k == m->kappa[e]) continue;
-    mine = PetscMax(mine, PetscAbsReal(PDLawDamage(law, t, k, &dd) - PDLawDamage(law, t, m->kappa[e], &dd)));
+    const PDLaw *law = &m->law[m->bonds->material[e]];
+    PetscReal    k;
+    if (law->kind == PD_LAW_ELASTIC) continue;
+    k = PetscMax(a->kx_n[e], PDModelBondStretch(m, ul, e));
+    if (k == m->kappa[e]) continue;
+    {
+      const PDLawBond t = PDModelBondThresholds(m, e, law);
+      mine              = PetscMax(mine, PetscAbsReal(PDLawDamage(law, &t, k, &dd) - PDLawDamage(law, &t, m->kappa[e], &dd)));
+    }
   }
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(&mine, err, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
   PetscFunctionReturn(0);
 }

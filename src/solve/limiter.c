@@ -53,60 +53,77 @@ static PetscErrorCode Raise(PDModel *m, PetscInt e) {
   PetscFunctionReturn(0);
 }
 
+/* The bonds whose stretch at u reaches the threshold of their allowed level, in bond order, with their
+   criticality s / threshold (>= 1). */
+typedef struct {
+  PetscInt  *bond, n, cap;
+  PetscReal *crit;
+} Held;
+
+static PetscErrorCode HeldAdd(Held *h, PetscInt e, PetscReal crit) {
+  PetscFunctionBeginUser;
+  if (h->n == h->cap) {
+    h->cap = PetscMax(64, 2 * h->cap);
+    PetscCall(PetscRealloc(sizeof(PetscInt) * h->cap, &h->bond));
+    PetscCall(PetscRealloc(sizeof(PetscReal) * h->cap, &h->crit));
+  }
+  h->bond[h->n]   = e;
+  h->crit[h->n++] = crit;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted) {
-  const PDBonds   *bd   = m->bonds;
-  const PDLattice *lat  = m->lat;
-  MPI_Comm         comm = lat->comm;
-  PetscReal       *s;
-  Candidate       *mine, *all = NULL;
-  PetscInt64      *ids   = NULL;
-  PetscInt         nmine = 0, nlocal_cand = 0, ntake, nall = 0, nparts = 0, parts;
-  PetscMPIInt      size, nsend, *counts, *displs;
+  const PDBonds     *bd   = m->bonds;
+  const PDLattice   *lat  = m->lat;
+  MPI_Comm           comm = lat->comm;
+  const PetscScalar *ul;
+  Vec                uloc;
+  Held               held = {NULL, 0, 0, NULL};
+  Candidate         *mine, *all = NULL;
+  PetscInt64        *ids   = NULL;
+  PetscInt           nmine = 0, nlocal_cand = 0, ntake, nall = 0, nparts = 0, parts;
+  PetscMPIInt        size, nsend, *counts, *displs;
 
   PetscFunctionBeginUser;
   *ncandidates = *granted = 0;
   if (!m->softening) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(PD_LOG.limiter, 0, 0, 0, 0));
-  s = m->stretch;
-  PetscCall(PDModelStretchesAt(m, u, s));
-  /* criticality s / threshold, >= 1 for a held bond, kept in place of the stretch. A bond passing from
-     one part of its softening branch to the next (-pd_limiter_sublevels) neither enters softening nor
-     breaks: it goes on at once, one part per stage, and only the other events are counted and capped */
+  /* A bond passing from one part of its softening branch to the next (-pd_limiter_sublevels) neither
+     enters softening nor breaks: it goes on at once, one part per stage, and only the other events are
+     counted and capped */
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PDLaw *law = &m->law[bd->material[e]];
-    if (s[e] < m->onset[bd->material[e]]) { /* below every threshold of its material */
-      s[e] = 0;
-      continue;
-    }
-    s[e] /= Threshold(m, e);
-    if (s[e] < 1) continue;
+    PetscReal    crit;
+    if (law->kind == PD_LAW_ELASTIC) continue; /* no threshold: its onset is PETSC_MAX_REAL */
+    crit = PDModelBondStretch(m, ul, e);
+    if (crit < m->onset[bd->material[e]]) continue; /* below every threshold of its material */
+    crit /= Threshold(m, e);
+    if (crit < 1) continue;
     if (law->kind != PD_LAW_LINEAR && m->level[e] >= PD_BOND_SOFTENING && m->level[e] < law->sublevels) {
       PetscCall(Raise(m, e));
-      s[e] = 0;
       if (PDBondCountedHere(lat, bd, e)) nparts++;
-    } else
+    } else {
+      PetscCall(HeldAdd(&held, e, crit));
       nlocal_cand++;
+    }
   }
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(&nparts, &parts, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(PetscMalloc1(PetscMax(1, nlocal_cand), &mine));
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    if (s[e] >= 1 && PDBondCountedHere(lat, bd, e)) {
-      mine[nmine].crit = s[e];
-      mine[nmine].id   = PDBondGlobalId(lat, bd, e);
+  for (PetscInt k = 0; k < held.n; k++) {
+    if (PDBondCountedHere(lat, bd, held.bond[k])) {
+      mine[nmine].crit = held.crit[k];
+      mine[nmine].id   = PDBondGlobalId(lat, bd, held.bond[k]);
       nmine++;
     }
   }
   PetscCall(MPIU_Allreduce(&nmine, ncandidates, 1, MPIU_INT, MPI_SUM, comm));
   if (*ncandidates == 0) {
-    *ncandidates = *granted = parts;
-    PetscCall(PetscFree(mine));
-    PetscCall(PetscLogEventEnd(PD_LOG.limiter, 0, 0, 0, 0));
-    PetscFunctionReturn(0);
-  }
-  if (max_events == 0 || *ncandidates <= max_events) {
+    /* only parts went on */
+  } else if (max_events == 0 || *ncandidates <= max_events) {
     /* every candidate goes: each rank decides its own copies alike, no exchange needed */
-    for (PetscInt e = 0; e < bd->nbonds; e++)
-      if (s[e] >= 1) PetscCall(Raise(m, e));
+    for (PetscInt k = 0; k < held.n; k++) PetscCall(Raise(m, held.bond[k]));
     *granted = *ncandidates;
   } else {
     /* each rank's best max_events cover the global best max_events */
@@ -124,11 +141,9 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     qsort(all, (size_t)nall, sizeof(Candidate), CompareCandidates);
     for (PetscInt k = 0; k < max_events; k++) ids[k] = all[k].id;
     qsort(ids, (size_t)max_events, sizeof(PetscInt64), CompareIds);
-    for (PetscInt e = 0; e < bd->nbonds; e++) {
-      PetscInt64 id;
-      if (s[e] < 1) continue;
-      id = PDBondGlobalId(lat, bd, e);
-      if (bsearch(&id, ids, (size_t)max_events, sizeof(PetscInt64), CompareIds)) PetscCall(Raise(m, e));
+    for (PetscInt k = 0; k < held.n; k++) {
+      const PetscInt64 id = PDBondGlobalId(lat, bd, held.bond[k]);
+      if (bsearch(&id, ids, (size_t)max_events, sizeof(PetscInt64), CompareIds)) PetscCall(Raise(m, held.bond[k]));
     }
     *granted = max_events;
     PetscCall(PetscFree2(all, ids));
@@ -137,6 +152,8 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
   *ncandidates += parts;
   *granted += parts;
   PetscCall(PetscFree(mine));
+  PetscCall(PetscFree(held.bond));
+  PetscCall(PetscFree(held.crit));
   PetscCall(PetscLogEventEnd(PD_LOG.limiter, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -175,20 +192,24 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
 }
 
 PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
-  const PDBonds *bd = m->bonds;
-  PetscReal     *s;
+  const PDBonds     *bd = m->bonds;
+  const PetscScalar *ul;
+  Vec                uloc;
 
   PetscFunctionBeginUser;
-  if (!m->stretch) PetscFunctionReturn(0); /* no history, no bars, no crushing criterion: nothing to commit or read */
+  if (!m->softening && !bd->nseg && !m->dilatation)
+    PetscFunctionReturn(0); /* no history, no bars, no crushing: nothing to commit or read */
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   PetscCall(PDModelStrainState(m, u));
-  s = m->stretch;
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
-    const PetscReal cap = s[e] < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
-    m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[e], cap * (1 - 1e-12)));
+    const PetscReal s   = PDModelBondStretch(m, ul, e);
+    const PetscReal cap = s < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
+    m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s, cap * (1 - 1e-12)));
     m->level_n[e]       = m->level[e];
   }
-  for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, s[bd->seg_bond[sg]]);
+  for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, PDModelBondStretch(m, ul, bd->seg_bond[sg]));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(PDModelConfine(m));
   PetscCall(PDModelCountDamage(m));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
@@ -197,17 +218,20 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
 
 /* Freezes every softened bond on the branch its stretch at u lies on; the others stay free. */
 PetscErrorCode PDModelFreezeBranches(PDModel *m, Vec u, unsigned char *branch, PetscInt *nfrozen) {
-  PetscInt mine = 0;
+  const PetscScalar *ul;
+  Vec                uloc;
+  PetscInt           mine = 0;
 
   PetscFunctionBeginUser;
   m->branch = NULL;
-  PetscCall(PDModelStretchesAt(m, u, m->stretch));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
     branch[e] = PD_BRANCH_FREE;
     if (!Softened(m, e)) continue;
-    branch[e] = m->stretch[e] >= m->kappa[e] ? PD_BRANCH_ENVELOPE : PD_BRANCH_SECANT;
+    branch[e] = PDModelBondStretch(m, ul, e) >= m->kappa[e] ? PD_BRANCH_ENVELOPE : PD_BRANCH_SECANT;
     if (PDBondCountedHere(m->lat, m->bonds, e)) mine++;
   }
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(&mine, nfrozen, 1, MPIU_INT, MPI_SUM, m->lat->comm));
   m->branch = branch;
   PetscFunctionReturn(0);
@@ -219,22 +243,28 @@ PetscErrorCode PDModelFreezeBranches(PDModel *m, Vec u, unsigned char *branch, P
    it unloads) goes to PD_BRANCH_KINK instead, the real law with the secant slope, so that a band of such
    bonds cannot swap branches in a cycle. */
 PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped, PetscInt *nkink) {
-  unsigned char *branch  = m->branch;
-  PetscInt       mine[2] = {0, 0}, total[2];
+  unsigned char     *branch  = m->branch;
+  PetscInt           mine[2] = {0, 0}, total[2];
+  const PetscScalar *ul;
+  Vec                uloc;
 
   PetscFunctionBeginUser;
   PetscCheck(branch, m->lat->comm, PETSC_ERR_ORDER, "no frozen branches to flip");
-  PetscCall(PDModelStretchesAt(m, u, m->stretch));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
-    const PetscReal s = m->stretch[e], k = m->kappa[e];
-    const PDBranch  b = (PDBranch)(branch[e] & PD_BRANCH_MASK);
-    PetscBool       back;
+    const PDBranch b = (PDBranch)(branch[e] & PD_BRANCH_MASK);
+    PetscReal      s, k;
+    PetscBool      back;
+    if (b != PD_BRANCH_SECANT && b != PD_BRANCH_ENVELOPE) continue;
+    s = PDModelBondStretch(m, ul, e);
+    k = m->kappa[e];
     if (!((b == PD_BRANCH_SECANT && s > k) || (b == PD_BRANCH_ENVELOPE && s < k))) continue;
     back = branch[e] & PD_BRANCH_FLIPPED ? PETSC_TRUE : PETSC_FALSE;
     branch[e] =
         back ? PD_BRANCH_KINK : (unsigned char)((b == PD_BRANCH_SECANT ? PD_BRANCH_ENVELOPE : PD_BRANCH_SECANT) | PD_BRANCH_FLIPPED);
     if (PDBondCountedHere(m->lat, m->bonds, e)) mine[back]++;
   }
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(mine, total, 2, MPIU_INT, MPI_SUM, m->lat->comm));
   *nflipped = total[0] + total[1];
   *nkink    = total[1];

@@ -67,7 +67,7 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   row->kinetic = row->damped = 0;
   PetscCall(PDModelEnergy(m, u, &row->stored, &row->dissipated));
   PetscCall(PDModelSteelStress(m, u, &row->steel_stress, &row->slip));
-  PetscCall(PDModelCrushing(m, NULL, &row->crush_ratio, &row->strain_min, row->crush_at)); /* at the commit's strain state */
+  PetscCall(PDModelCrushing(m, u, PETSC_TRUE, &row->crush_ratio, &row->strain_min, row->crush_at)); /* the commit's strain state */
   PetscCall(PDRecordAddRow(rec, row));
   rec->steps = p->step;
   PetscFunctionReturn(0);
