@@ -759,8 +759,8 @@ PetscErrorCode PDModelCrushing(PDModel *m, Vec u, PetscBool strain_state_at_u, P
   *s_min = 0;
   for (PetscInt a = 0; a < 3; a++) at[a] = 0;
   if (!PDSceneHasCrushingStrain(m->scene)) PetscFunctionReturn(0);
-  if (!strain_state_at_u) PetscCall(PDModelStrainState(m, u));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  if (!strain_state_at_u) PetscCall(PDModelNodalDilatation(m, ul));
   PetscCall(VecGhostGetLocalForm(m->dilatation, &loc));
   PetscCall(VecGetArrayRead(loc, &th));
   PDModelCrushingLocal(m, ul, th, &mine, &gid, &buf[1], &buf[2]);

@@ -200,8 +200,8 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
   if (!m->softening && !bd->nseg && !m->dilatation)
     PetscFunctionReturn(0); /* no history, no bars, no crushing: nothing to commit or read */
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
-  PetscCall(PDModelStrainState(m, u));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  if (m->dilatation) PetscCall(PDModelNodalDilatation(m, ul)); /* the strain state, from the same local values */
   for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
     const PetscReal s   = PDModelBondStretch(m, ul, e);
     const PetscReal cap = s < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
