@@ -119,7 +119,7 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
 /* Damage limiter: bonds whose stretch at u passes the threshold of their allowed level are candidates;
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
-PetscErrorCode PDModelCommitHistory(PDModel *, Vec u);
+PetscErrorCode PDModelCommitHistory(PDModel *, Vec u, PetscReal energy[2]);
 /* The strain state at u that outlives it: where a criterion or a law reads it (-pd_fc, -pd_eps_cu), the
    nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */
 PetscErrorCode PDModelStrainState(PDModel *, Vec u);
@@ -134,6 +134,7 @@ PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyScalars(PDModel *, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled, PetscBool eliminate,
                                           Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyAt(PDModel *, Vec u, Vec x, Vec y, PetscBool refresh);
+PetscErrorCode PDModelTangentChange(PDModel *, Vec u0, Vec u1, PetscReal *change);
 PetscErrorCode PDModelElasticApply(PDModel *, Vec x, Vec y);
 PetscErrorCode PDModelStiffnessRowBound(const PDModel *, Vec row);
 /* A number in [-1, 1] from a global id (splitmix64): the same bond or dof gets the same value on any

@@ -306,10 +306,32 @@ PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscI
   PetscFunctionReturn(0);
 }
 
-/* Energy of the bonds this rank counts: stored c (1 - d) s^2 |xi| / 2 (c s^2 |xi| / 2 in compression) and
-   dissipated c |xi| (W(kappa) - (1 - d) kappa^2 / 2), W the law's envelope work. The |xi| turns the
-   stretch integral into work for the standard stretch (ds = e.deta / |xi|); with the modified stretch
-   it is the small-strain value. */
+/* Energy of bond e of concrete at stretch s, reference length L0: stored c (1 - d) s^2 |xi| / 2 (c s^2 |xi| / 2
+   in compression) and dissipated c |xi| (W(kappa) - (1 - d) kappa^2 / 2), W the law's envelope work. The |xi|
+   turns the stretch integral into work for the standard stretch (ds = e.deta / |xi|); with the modified
+   stretch it is the small-strain value. */
+static inline void ConcreteEnergy(const PDModel *m, PetscInt e, PetscReal s, PetscReal L0, PetscReal *es, PetscReal *ed) {
+  const PetscReal c = m->bonds->coef[e];
+  if (!m->softening || m->law[m->bonds->material[e]].kind == PD_LAW_ELASTIC) {
+    *es += 0.5 * c * s * s * L0;
+    return;
+  }
+  {
+    const PDLaw    *law = &m->law[m->bonds->material[e]];
+    const PetscReal a   = PDLawHistoryStretch(law, s);
+    if (PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]]) { /* undamaged, W(kappa) = kappa^2 / 2: nothing dissipated */
+      *es += 0.5 * c * s * s * L0;
+      return;
+    }
+    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
+    PetscReal       cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(a, 0), &cap);
+    PetscReal       d = PDLawDamage(law, t, kap, &dd);
+    *es += 0.5 * c * (a < 0 ? 1 : 1 - d) * s * s * L0;
+    *ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
+  }
+}
+
+/* Energy of the bonds this rank counts (ConcreteEnergy, and a bar segment's stored and dissipated work). */
 PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal *stored, PetscReal *dissipated) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
@@ -319,7 +341,7 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
   PetscCall(PetscLogEventBegin(PD_LOG.energy, 0, 0, 0, 0));
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt i = bd->a[e], j = bd->b[e];
-    PetscReal      dir[3], L0, L, s, q, c = bd->coef[e];
+    PetscReal      dir[3], L0, L, s, q;
     if (!PDBondCountedHere(lat, bd, e)) continue;
     BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
     if (bd->seg && bd->seg[e] >= 0) {
@@ -331,24 +353,25 @@ PetscErrorCode PDModelEnergiesLocal(PDModel *m, const PetscScalar *u, PetscReal 
       if (!rupt) es += bd->seg_coef[sg] * L0 * PDSteelStored(st, s, sp);
       ed += m->dissipated_n[sg] + SegmentDissipation(m, sg, L0, s, sp, rupt);
     }
-    if (!m->softening || m->law[bd->material[e]].kind == PD_LAW_ELASTIC) {
-      es += 0.5 * c * s * s * L0;
-      continue;
-    }
-    {
-      const PDLaw    *law = &m->law[bd->material[e]];
-      const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
-      const PetscReal a = PDLawHistoryStretch(law, s);
-      PetscReal       cap, dd, kap = EffectiveHistory(m, e, law, t, PetscMax(a, 0), &cap);
-      PetscReal       d = PDLawDamage(law, t, kap, &dd);
-      es += 0.5 * c * (a < 0 ? 1 : 1 - d) * s * s * L0;
-      ed += c * L0 * (PDLawEnvelopeWork(law, t, kap) - 0.5 * (1 - d) * kap * kap);
-    }
+    ConcreteEnergy(m, e, s, L0, &es, &ed);
   }
   *stored     = es;
   *dissipated = ed;
   PetscCall(PetscLogEventEnd(PD_LOG.energy, 0, 0, 0, 0));
   PetscFunctionReturn(0);
+}
+
+/* The same sums over bonds e0 .. e0 + n - 1 at their stretches s (PDModelBondStretches), added to *es and *ed,
+   for a model without bar segments: the history commit takes the energies of the state it commits in its
+   own loop over the stretches. */
+void PDModelBondEnergies(const PDModel *m, PetscInt e0, PetscInt n, const PetscReal *s, PetscReal *es, PetscReal *ed) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt e = e0 + k;
+    if (!PDBondCountedHere(lat, bd, e)) continue;
+    ConcreteEnergy(m, e, s[k], PetscSqrtReal(PDBondLength2(m->bs, lat->x, bd->a[e], bd->b[e])), es, ed);
+  }
 }
 
 /* Tangent scalars of each bond: block = ka e e^T + kb I, ka = g' q - g/|y|, kb = g/|y| (THEORY.md Sec. 4);
@@ -465,6 +488,85 @@ PetscReal PDModelBondStretch(const PDModel *m, const PetscScalar *u, PetscInt e)
     BondState(m->scene, bs, &lat->x[3 * a], &lat->x[3 * bd->b[e]], &u[bs * a], &u[bs * bd->b[e]], dir, &L0, &L, &s, &q);
   }
   return m->law[bd->material[e]].kind == PD_LAW_SLIP ? PetscAbsReal(s) : s;
+}
+
+/* Small kinematics: the stretches of bonds e0 .. e0 + n - 1, a run of one first node at a time (RunStart). */
+static inline void StretchesSmall(PetscInt bs, const PDBonds *bd, const PetscReal *restrict x, const PetscScalar *restrict u, PetscInt e0,
+                                  PetscInt n, PetscReal *restrict s) {
+  PetscInt  cur   = -1;
+  PetscReal xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0};
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt e = e0 + k, i = bd->a[e];
+    PetscReal      xi[3], L2, dot;
+    if (i != cur) {
+      cur = i;
+      for (PetscInt r = 0; r < bs; r++) {
+        xc[r] = x[3 * i + r];
+        uc[r] = PetscRealPart(u[bs * i + r]);
+      }
+    }
+    dot  = Projection(bs, x, u, bd->b[e], xc, uc, xi, &L2);
+    s[k] = dot / L2;
+  }
+}
+
+/* The stretches of bonds e0 .. e0 + n - 1 (n at most PD_STRETCH_BLOCK) at the local displacements u, as
+   PDModelBondStretch gives them one by one, to the last bit: the loops over every bond that read stretches
+   (the limiter, the history commit, IMPL-EX's error) take them a block at a time, in a loop that keeps each
+   node's values in registers for its run of bonds and that the compiler unrolls in 3D. */
+void PDModelBondStretches(const PDModel *m, const PetscScalar *u, PetscInt e0, PetscInt n, PetscReal *s) {
+  const PDBonds *bd = m->bonds;
+  if (m->scene->kinematics != PD_KINEMATICS_SMALL) {
+    for (PetscInt k = 0; k < n; k++) s[k] = PDModelBondStretch(m, u, e0 + k);
+    return;
+  }
+  if (m->bs == 3)
+    StretchesSmall(3, bd, m->lat->x, u, e0, n, s);
+  else
+    StretchesSmall(m->bs, bd, m->lat->x, u, e0, n, s);
+  for (PetscInt k = 0; m->nslip && k < n; k++)
+    if (m->law[bd->material[e0 + k]].kind == PD_LAW_SLIP) s[k] = PetscAbsReal(s[k]);
+}
+
+/* Whether bond e's slope is c at stretch s with the history it has: ConcreteForce's elastic branches before
+   the bond's own thresholds are needed, and no bar segment. */
+static inline PetscBool SlopeElastic(const PDModel *m, PetscInt e, PetscReal s) {
+  const PDLaw *law;
+  PetscReal    a;
+  if (m->bonds->seg && m->bonds->seg[e] >= 0) return PETSC_FALSE;
+  if (!m->softening || (s < 0 && !m->nslip)) return PETSC_TRUE;
+  law = &m->law[m->bonds->material[e]];
+  a   = PDLawHistoryStretch(law, s);
+  return a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]] ? PETSC_TRUE : PETSC_FALSE;
+}
+
+/* Small kinematics: du . (K(u0) - K(u1)) du, du = u1 - u0, over the bonds this rank counts, both tangents
+   with the history the model holds (the end-slope term of an accepted step's work, path.c). Per bond it is
+   (k(u0) - k(u1)) (xi . (du_j - du_i))^2 / |xi|^2, k the tangent scalar; it is zero for a bond whose slope
+   is c in both states, most of them, whose law is not evaluated. */
+PetscReal PDModelTangentChangeLocal(const PDModel *m, const PetscScalar *u0, const PetscScalar *u1) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscInt   bs  = m->bs;
+  PetscReal        sum = 0;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt i = bd->a[e], j = bd->b[e];
+    PetscReal      xi[3], L2 = 0, d0 = 0, d1 = 0, s0, s1, dd, g, gp0, gp1;
+    for (PetscInt r = 0; r < bs; r++) {
+      xi[r] = lat->x[3 * j + r] - lat->x[3 * i + r];
+      L2 += xi[r] * xi[r];
+      d0 += xi[r] * PetscRealPart(u0[bs * j + r] - u0[bs * i + r]);
+      d1 += xi[r] * PetscRealPart(u1[bs * j + r] - u1[bs * i + r]);
+    }
+    s0 = d0 / L2;
+    s1 = d1 / L2;
+    if ((SlopeElastic(m, e, s0) && SlopeElastic(m, e, s1)) || !PDBondCountedHere(lat, bd, e)) continue;
+    BondForce(m, e, s0, &g, &gp0);
+    BondForce(m, e, s1, &g, &gp1);
+    dd = d1 - d0;
+    sum += (gp0 - gp1) / PetscSqrtReal(L2) * dd * dd / L2;
+  }
+  return sum;
 }
 
 /* Commits one bond's state at stretch s: the largest stretch of its concrete (the explicit path, which has

@@ -80,10 +80,14 @@ PetscErrorCode           PDModelEnergiesLocal(PDModel *, const PetscScalar *u, P
 PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled,
                                         const PetscScalar *x, PetscScalar *y);
 PetscReal      PDModelBondStretch(const PDModel *, const PetscScalar *u, PetscInt e);
-void           PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
-void           PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
-PetscReal      PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
-PetscReal      PDModelSlipLocal(PDModel *, const PetscScalar *u);
+#define PD_STRETCH_BLOCK 256 /* bonds whose stretches PDModelBondStretches fills at once */
+void      PDModelBondStretches(const PDModel *, const PetscScalar *u, PetscInt e0, PetscInt n, PetscReal *s);
+void      PDModelBondEnergies(const PDModel *, PetscInt e0, PetscInt n, const PetscReal *s, PetscReal *es, PetscReal *ed);
+PetscReal PDModelTangentChangeLocal(const PDModel *, const PetscScalar *u0, const PetscScalar *u1);
+void      PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
+void      PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
+PetscReal PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
+PetscReal PDModelSlipLocal(PDModel *, const PetscScalar *u);
 #define PD_CRUSH_TIE 1e-6 /* relative difference of two bonds' compression below which they tie */
 void PDModelCrushingLocal(PDModel *, const PetscScalar *u, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
                           PetscReal at[3]);

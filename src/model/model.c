@@ -798,6 +798,26 @@ PetscErrorCode PDModelEnergy(PDModel *m, Vec u, PetscReal *stored, PetscReal *di
   PetscFunctionReturn(0);
 }
 
+/* du . (K(u0) - K(u1)) du, du = u1 - u0, under small kinematics, both tangents with the history the model
+   holds (PDModelTangentChangeLocal): the bond scalars are not stored and no product is formed. */
+PetscErrorCode PDModelTangentChange(PDModel *m, Vec u0, Vec u1, PetscReal *change) {
+  const PetscScalar *ul;
+  PetscScalar       *vl;
+  Vec                uloc, vloc;
+  PetscReal          mine;
+
+  PetscFunctionBeginUser;
+  PetscCheck(m->scene->kinematics == PD_KINEMATICS_SMALL, m->lat->comm, PETSC_ERR_SUP,
+             "the tangent's change by bonds needs small kinematics");
+  PetscCall(PDModelScatterToLocal(m, u0, &ul, &uloc));
+  PetscCall(PDModelGetProductInput(m, u1, PETSC_FALSE, &vl, &vloc));
+  mine = PDModelTangentChangeLocal(m, ul, vl);
+  PetscCall(PDModelRestoreProductInput(m, &vl, &vloc));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  PetscCall(MPIU_Allreduce(&mine, change, 1, MPIU_REAL, MPIU_SUM, m->lat->comm));
+  PetscFunctionReturn(0);
+}
+
 /* Gershgorin bound on the undamaged elastic stiffness K_0, per dof: row (i, a) holds per bond the block
    (c/|xi|) e e^T on node i's diagonal and its negative in column j, whose entries sum in absolute value to
    2 (c/|xi|) |e_a| sum_b |e_b|. No eigenvalue of M^-1 K_0 (M diagonal) exceeds the largest row sum over its

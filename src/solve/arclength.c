@@ -361,15 +361,19 @@ static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
 
   PetscFunctionBeginUser;
   PetscCall(PDModelScatterToLocal(m, a->u, &ul, &uloc));
-  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
-    const PDLaw *law = &m->law[m->bonds->material[e]];
-    PetscReal    k;
-    if (law->kind == PD_LAW_ELASTIC) continue;
-    k = PetscMax(a->kx_n[e], PDModelBondStretch(m, ul, e));
-    if (k == m->kappa[e]) continue;
-    {
-      const PDLawBond t = PDModelBondThresholds(m, e, law);
-      mine              = PetscMax(mine, PetscAbsReal(PDLawDamage(law, &t, k, &dd) - PDLawDamage(law, &t, m->kappa[e], &dd)));
+  for (PetscInt e0 = 0; e0 < m->bonds->nbonds; e0 += PD_STRETCH_BLOCK) {
+    const PetscInt n = PetscMin(PD_STRETCH_BLOCK, m->bonds->nbonds - e0);
+    PetscReal      s[PD_STRETCH_BLOCK];
+    PDModelBondStretches(m, ul, e0, n, s);
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscInt  e   = e0 + k;
+      const PDLaw    *law = &m->law[m->bonds->material[e]];
+      const PetscReal kr  = PetscMax(a->kx_n[e], s[k]);
+      if (law->kind == PD_LAW_ELASTIC || kr == m->kappa[e]) continue;
+      {
+        const PDLawBond t = PDModelBondThresholds(m, e, law);
+        mine              = PetscMax(mine, PetscAbsReal(PDLawDamage(law, &t, kr, &dd) - PDLawDamage(law, &t, m->kappa[e], &dd)));
+      }
     }
   }
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));

@@ -92,20 +92,25 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
      enters softening nor breaks: it goes on at once, one part per stage, and only the other events are
      counted and capped */
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PDLaw *law = &m->law[bd->material[e]];
-    PetscReal    crit;
-    if (law->kind == PD_LAW_ELASTIC) continue; /* no threshold: its onset is PETSC_MAX_REAL */
-    crit = PDModelBondStretch(m, ul, e);
-    if (crit < m->onset[bd->material[e]]) continue; /* below every threshold of its material */
-    crit /= Threshold(m, e);
-    if (crit < 1) continue;
-    if (law->kind != PD_LAW_LINEAR && m->level[e] >= PD_BOND_SOFTENING && m->level[e] < law->sublevels) {
-      PetscCall(Raise(m, e));
-      if (PDBondCountedHere(lat, bd, e)) nparts++;
-    } else {
-      PetscCall(HeldAdd(&held, e, crit));
-      nlocal_cand++;
+  for (PetscInt e0 = 0; e0 < bd->nbonds; e0 += PD_STRETCH_BLOCK) {
+    const PetscInt n = PetscMin(PD_STRETCH_BLOCK, bd->nbonds - e0);
+    PetscReal      s[PD_STRETCH_BLOCK];
+    PDModelBondStretches(m, ul, e0, n, s);
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscInt e   = e0 + k;
+      const PDLaw   *law = &m->law[bd->material[e]];
+      PetscReal      crit;
+      if (law->kind == PD_LAW_ELASTIC) continue;      /* no threshold: its onset is PETSC_MAX_REAL */
+      if (s[k] < m->onset[bd->material[e]]) continue; /* below every threshold of its material */
+      crit = s[k] / Threshold(m, e);
+      if (crit < 1) continue;
+      if (law->kind != PD_LAW_LINEAR && m->level[e] >= PD_BOND_SOFTENING && m->level[e] < law->sublevels) {
+        PetscCall(Raise(m, e));
+        if (PDBondCountedHere(lat, bd, e)) nparts++;
+      } else {
+        PetscCall(HeldAdd(&held, e, crit));
+        nlocal_cand++;
+      }
     }
   }
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
@@ -166,24 +171,28 @@ static PetscBool Softened(const PDModel *m, PetscInt e) {
   return law->kind != PD_LAW_ELASTIC && law->kind != PD_LAW_LINEAR && m->kappa[e] > t->s0 && m->kappa[e] < t->sc ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* Broken and softening bonds (global, each bond counted once) from the committed history. */
-PetscErrorCode PDModelCountDamage(PDModel *m) {
-  const PDBonds *bd       = m->bonds;
-  PetscInt64     count[3] = {0, 0, 0}, total[3]; /* broken, softening, yielded bar segments */
+/* Adds bond e to the broken (count[0]) or softening (count[1]) bonds by its committed history, if this rank
+   counts it. A history below its material's onset is neither, whatever the bond's own thresholds. */
+static inline void CountBond(const PDModel *m, PetscInt e, PetscInt64 count[3]) {
+  const PDBonds *bd  = m->bonds;
+  const PDLaw   *law = &m->law[bd->material[e]];
+  if (m->kappa[e] < m->onset[bd->material[e]] || law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP ||
+      !PDBondCountedHere(m->lat, bd, e))
+    return;
+  if (m->kappa[e] >= PDModelBondThresholds(m, e, law).sc)
+    count[0]++;
+  else if (Softened(m, e))
+    count[1]++;
+}
+
+/* The global counts from this rank's bond counts (CountBond) and its yielded bar segments. */
+static PetscErrorCode CountsFinish(PDModel *m, PetscInt64 count[3]) {
+  const PDBonds *bd = m->bonds;
+  PetscInt64     total[3];
 
   PetscFunctionBeginUser;
-  if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
   for (PetscInt sg = 0; sg < bd->nseg; sg++)
     if ((m->sp_n[sg] != 0 || m->ruptured_n[sg]) && PDBondCountedHere(m->lat, bd, bd->seg_bond[sg])) count[2]++;
-  for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
-    const PDLaw    *law = &m->law[bd->material[e]];
-    const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
-    if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP || !PDBondCountedHere(m->lat, bd, e)) continue;
-    if (m->kappa[e] >= t->sc)
-      count[0]++;
-    else if (Softened(m, e))
-      count[1]++;
-  }
   PetscCall(MPIU_Allreduce(count, total, 3, MPIU_INT64, MPI_SUM, m->lat->comm));
   m->broken          = total[0];
   m->softening_bonds = total[1];
@@ -191,28 +200,61 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u) {
-  const PDBonds     *bd = m->bonds;
+/* Broken and softening bonds (global, each bond counted once) from the committed history. */
+PetscErrorCode PDModelCountDamage(PDModel *m) {
+  PetscInt64 count[3] = {0, 0, 0}; /* broken, softening, yielded bar segments */
+
+  PetscFunctionBeginUser;
+  if (!m->softening && !m->scene->nbars) PetscFunctionReturn(0);
+  for (PetscInt e = 0; m->softening && e < m->bonds->nbonds; e++) CountBond(m, e, count);
+  PetscCall(CountsFinish(m, count));
+  PetscFunctionReturn(0);
+}
+
+/* Commits the state u: each bond's largest stretch (held below the threshold its level has not passed),
+   the limiter's levels, the bar segments' plastic state, the crushing's threshold rise, the damage counts;
+   with energy, the stored and dissipated energy at u with the committed history (PDModelEnergy), which a
+   model without bar segments and crushing sums in the same loop over the stretches. The tangent scalars
+   kept from the last residual belong to the history before: they are not reused. */
+PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2]) {
+  const PDBonds     *bd       = m->bonds;
+  const PetscBool    fuse     = energy && m->softening && !bd->nseg && !m->shift ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt64         count[3] = {0, 0, 0};
+  PetscReal          local[2] = {0, 0};
   const PetscScalar *ul;
   Vec                uloc;
 
   PetscFunctionBeginUser;
-  if (!m->softening && !bd->nseg && !m->dilatation)
-    PetscFunctionReturn(0); /* no history, no bars, no crushing: nothing to commit or read */
+  m->ka_at_residual = PETSC_FALSE;
+  if (!m->softening && !bd->nseg && !m->dilatation) { /* no history, no bars, no crushing: nothing to commit or read */
+    if (energy) PetscCall(PDModelEnergy(m, u, &energy[0], &energy[1]));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
   if (m->dilatation) PetscCall(PDModelNodalDilatation(m, ul)); /* the strain state, from the same local values */
-  for (PetscInt e = 0; m->softening && e < bd->nbonds; e++) {
-    const PetscReal s   = PDModelBondStretch(m, ul, e);
-    const PetscReal cap = s < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
-    m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s, cap * (1 - 1e-12)));
-    m->level_n[e]       = m->level[e];
+  for (PetscInt e0 = 0; m->softening && e0 < bd->nbonds; e0 += PD_STRETCH_BLOCK) {
+    const PetscInt n = PetscMin(PD_STRETCH_BLOCK, bd->nbonds - e0);
+    PetscReal      s[PD_STRETCH_BLOCK];
+    PDModelBondStretches(m, ul, e0, n, s);
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscInt  e   = e0 + k;
+      const PetscReal cap = s[k] < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
+      m->kappa[e]         = PetscMax(m->kappa[e], PetscMin(s[k], cap * (1 - 1e-12)));
+      m->level_n[e]       = m->level[e];
+      CountBond(m, e, count); /* the crushing's rise below leaves these counts as they are: it raises bonds below s0 only */
+    }
+    if (fuse) PDModelBondEnergies(m, e0, n, s, &local[0], &local[1]);
   }
   for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, PDModelBondStretch(m, ul, bd->seg_bond[sg]));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(PDModelConfine(m));
-  PetscCall(PDModelCountDamage(m));
+  PetscCall(CountsFinish(m, count));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
+  if (fuse)
+    PetscCall(MPIU_Allreduce(local, energy, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
+  else if (energy)
+    PetscCall(PDModelEnergy(m, u, &energy[0], &energy[1]));
   PetscFunctionReturn(0);
 }
 

@@ -31,11 +31,17 @@ PetscErrorCode PDPathDestroy(PDPath *p) {
    Afterwards u_n = u and f_n = f_int(u). */
 PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscReal lam, PetscInt its, PetscInt lits, PDCurveRow *row) {
   PetscScalar    dw, c = 0;
+  PetscReal      energy[2];
   PetscLogDouble now;
 
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(p->du, -1, p->u_n, u));
-  if (m->ka) { /* the tangent varies: end-slope correction (before the history moves) */
+  if (m->ka && m->scene->kinematics == PD_KINEMATICS_SMALL) { /* the tangent varies: end-slope correction (before the history moves) */
+    PetscReal change;
+    m->lambda = p->lambda_n; /* u_n's constrained values */
+    PetscCall(PDModelTangentChange(m, p->u_n, u, &change));
+    c = change;
+  } else if (m->ka) {
     const PetscReal lam_u = m->lambda;
     m->lambda             = p->lambda_n;
     PetscCall(PDModelTangentApplyAt(m, p->u_n, p->du, p->ku, PETSC_TRUE));
@@ -46,7 +52,7 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
     m->lambda = lam_u;
   }
   m->lambda = lam;
-  PetscCall(PDModelCommitHistory(m, u));
+  PetscCall(PDModelCommitHistory(m, u, energy));
   PetscCall(PDModelMeasure(m, u, &row->load, &row->disp, &row->cmod));
   PetscCall(VecAXPY(p->f_n, 1, m->f_work));
   PetscCall(VecDot(p->f_n, p->du, &dw));
@@ -65,7 +71,8 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   row->wall         = now - rec->t_start;
   row->external     = p->w_ext;
   row->kinetic = row->damped = 0;
-  PetscCall(PDModelEnergy(m, u, &row->stored, &row->dissipated));
+  row->stored                = energy[0];
+  row->dissipated            = energy[1];
   PetscCall(PDModelSteelStress(m, u, &row->steel_stress, &row->slip));
   PetscCall(PDModelCrushing(m, u, PETSC_TRUE, &row->crush_ratio, &row->strain_min, row->crush_at)); /* the commit's strain state */
   PetscCall(PDRecordAddRow(rec, row));
