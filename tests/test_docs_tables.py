@@ -16,7 +16,8 @@ REPORTS = {"accuracy_cost.py": ["accuracy_cost.md"], "gregoire.py": ["gregoire.m
            "halfnotched.py": ["halfnotched.md"], "pc_refresh.py": ["pc_refresh.md"],
            "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"],
            "partition.py": ["partition.md"], "scaling.py": ["scaling.md"], "stuttgart.py": ["stuttgart.md"],
-           "softening_convergence.py": ["softening_convergence.md"], "targets.py": ["targets.md"], "memory.py": ["memory.md"]}
+           "softening_convergence.py": ["softening_convergence.md"], "targets.py": ["targets.md"], "memory.py": ["memory.md"],
+           "build_profile.py": ["build_profile.md"]}
 
 
 def main():

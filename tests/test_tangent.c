@@ -333,6 +333,89 @@ static PetscErrorCode LaterAssembly(const char *extra, PetscReal *diff, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* An accepted step's sums by bond (path.c) against the vector forms they replace, in a random softening state
+   with a history below the stretches: the stretches by block against one by one (largest difference), the
+   end-slope term du . (K(u0) - K(u1)) du by bond against two products from stored tangent scalars (relative
+   difference; small kinematics only, else 0), and the energies and damage counts the commit takes in its loop
+   against PDModelEnergy and PDModelCountDamage after it (differences). */
+static PetscErrorCode AcceptedStepSums(const char *extra, PetscReal *stretch_diff, PetscReal *change_diff, PetscReal *energy_diff,
+                                       PetscInt *count_diff, PetscInt *softened) {
+  PDScene            sc;
+  PDLattice          lat;
+  PDBonds            bd;
+  PDModel            m;
+  Mat                J, P;
+  Vec                u0, u1, du, k0, k1, loc;
+  PetscRandom        rnd;
+  const PetscScalar *ul;
+  PetscReal          energy[2], stored, dissipated;
+  PetscInt64         broken, softening;
+
+  PetscFunctionBeginUser;
+  PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
+  PetscCall(PDModelCreateOperators(&m, &J, &P)); /* allocates the tangent scalars */
+  PetscCall(VecDuplicate(m.f_ref, &u0));
+  PetscCall(VecDuplicate(u0, &u1));
+  PetscCall(VecDuplicate(u0, &du));
+  PetscCall(VecDuplicate(u0, &k0));
+  PetscCall(VecDuplicate(u0, &k1));
+  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
+  PetscCall(PetscRandomSetInterval(rnd, -1, 1));
+  PetscCall(PetscRandomSetSeed(rnd, 13));
+  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(VecSetRandom(u0, rnd));
+  PetscCall(VecScale(u0, 4e-4 * sc.dx));
+  PetscCall(VecSetRandom(du, rnd));
+  PetscCall(VecScale(du, 2e-4 * sc.dx));
+  PetscCall(VecWAXPY(u1, 1, u0, du));
+  PetscCall(PDModelApplyBoundaryValues(&m, 0, u0));
+  PetscCall(PDModelApplyBoundaryValues(&m, 0, u1));
+  PetscCall(VecWAXPY(du, -1, u0, u1));
+  /* stretches, and a history of half of them at u0 so that bonds load, unload and soften */
+  *stretch_diff = 0;
+  PetscCall(PDModelScatterToLocal(&m, u0, &ul, &loc));
+  for (PetscInt e0 = 0; e0 < bd.nbonds; e0 += PD_STRETCH_BLOCK) {
+    const PetscInt n = PetscMin(PD_STRETCH_BLOCK, bd.nbonds - e0);
+    PetscReal      s[PD_STRETCH_BLOCK];
+    PDModelBondStretches(&m, ul, e0, n, s);
+    for (PetscInt k = 0; k < n; k++) {
+      *stretch_diff = PetscMax(*stretch_diff, PetscAbsReal(s[k] - PDModelBondStretch(&m, ul, e0 + k)));
+      if (m.softening) {
+        m.kappa[e0 + k] = PetscMax(0, 0.5 * s[k]);
+        m.level[e0 + k] = PD_BOND_SOFTENING;
+      }
+    }
+  }
+  PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
+  *change_diff = 0;
+  if (sc.kinematics == PD_KINEMATICS_SMALL) {
+    PetscReal   change;
+    PetscScalar c;
+    PetscCall(PDModelTangentChange(&m, u0, u1, &change));
+    PetscCall(PDModelTangentApplyAt(&m, u0, du, k0, PETSC_TRUE));
+    PetscCall(PDModelTangentApplyAt(&m, u1, du, k1, PETSC_TRUE));
+    PetscCall(VecAXPY(k0, -1, k1));
+    PetscCall(VecDot(k0, du, &c));
+    *change_diff = PetscAbsReal(change - PetscRealPart(c)) / PetscAbsReal(PetscRealPart(c));
+  }
+  PetscCall(PDModelCommitHistory(&m, u1, energy));
+  broken    = m.broken;
+  softening = m.softening_bonds;
+  *softened = (PetscInt)softening;
+  PetscCall(PDModelEnergy(&m, u1, &stored, &dissipated));
+  PetscCall(PDModelCountDamage(&m));
+  *energy_diff = PetscMax(PetscAbsReal(energy[0] - stored), PetscAbsReal(energy[1] - dissipated));
+  *count_diff  = (PetscInt)(PetscAbsInt((PetscInt)(broken - m.broken)) + PetscAbsInt((PetscInt)(softening - m.softening_bonds)));
+  PetscCall(PetscRandomDestroy(&rnd));
+  {
+    Vec *v[] = {&u0, &u1, &du, &k0, &k1};
+    for (size_t k = 0; k < sizeof v / sizeof *v; k++) PetscCall(VecDestroy(v[k]));
+  }
+  PetscCall(PDModelDestroyOperators(&J, &P));
+  PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv) {
   const char *cases[] = {
       "-pd_law elastic -pd_kinematics finite",
@@ -449,6 +532,29 @@ int main(int argc, char **argv) {
             (PetscInt)k == finite ? 0 : 1);
       PetscCall(PetscSNPrintf(what, sizeof what, "residual and tangent scalars from the rows equal the whole loop's: %s", prod[k]));
       Check(rows_diff == 0 ? PETSC_TRUE : PETSC_FALSE, what, rows_diff, 0);
+    }
+  }
+  if (!products_only) {
+    /* the stretches and the commit's sums the same bits as one by one; the end-slope term to round-off of the
+       products it replaces (which difference two large dot products) */
+    const char *acc[] = {"-pd_law nonlinear", "-pd_law bilinear -pd_strength_scatter 0.05",
+                         "-pd_law nonlinear -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 -pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
+                         "-pd_law nonlinear -pd_kinematics finite"};
+    for (size_t k = 0; k < sizeof acc / sizeof *acc; k++) {
+      PetscReal sdiff, cdiff, ediff;
+      PetscInt  ndiff, nsoft;
+      char      what[200];
+      PetscCall(AcceptedStepSums(acc[k], &sdiff, &cdiff, &ediff, &ndiff, &nsoft));
+      PetscCall(PetscSNPrintf(what, sizeof what, "stretches by block equal one by one: %s", acc[k]));
+      Check(sdiff == 0 ? PETSC_TRUE : PETSC_FALSE, what, sdiff, 0);
+      PetscCall(PetscSNPrintf(what, sizeof what, "end-slope term by bond against products, relative < 1e-12: %s", acc[k]));
+      Check(cdiff < 1e-12 ? PETSC_TRUE : PETSC_FALSE, what, cdiff, 1e-12);
+      PetscCall(PetscSNPrintf(what, sizeof what, "the commit's energies equal PDModelEnergy's: %s", acc[k]));
+      Check(ediff == 0 ? PETSC_TRUE : PETSC_FALSE, what, ediff, 0);
+      PetscCall(PetscSNPrintf(what, sizeof what, "the commit's damage counts equal PDModelCountDamage's: %s", acc[k]));
+      Check(ndiff == 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)ndiff, 0);
+      PetscCall(PetscSNPrintf(what, sizeof what, "the committed state has softening bonds: %s", acc[k]));
+      Check(nsoft > 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)nsoft, 1);
     }
   }
   {
