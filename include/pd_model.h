@@ -119,6 +119,7 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
 /* Damage limiter: bonds whose stretch at u passes the threshold of their allowed level are candidates;
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
+PetscErrorCode PDModelInternalForceKeepTangent(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u, PetscReal energy[2]);
 /* The strain state at u that outlives it: where a criterion or a law reads it (-pd_fc, -pd_eps_cu), the
    nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */

@@ -446,6 +446,21 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
   PetscFunctionReturn(0);
 }
 
+/* Internal forces at u and, where the drivers take the tangent from the residual's loop (m->ka_with_residual),
+   the tangent scalars at u from the same loop, kept with the point they belong to, so that a Jacobian at
+   that point (PDModelJacobian) does not go over the bonds again. */
+PetscErrorCode PDModelInternalForceKeepTangent(PDModel *m, Vec u, Vec F) {
+  PetscFunctionBeginUser;
+  PetscCall(InternalForce(m, u, F, m->ka_with_residual));
+  if (m->ka_with_residual) {
+    if (!m->ka_u) PetscCall(VecDuplicate(u, &m->ka_u));
+    PetscCall(VecCopy(u, m->ka_u));
+    m->ka_lambda      = m->lambda;
+    m->ka_at_residual = PETSC_TRUE;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* After a limiter grant the driver evaluates the residual again where it evaluated the last one: only the
    rows of the nodes of the bonds the grant changed can differ. They are recomputed (in the whole loop's
    order, so to the last bit) into a copy of the last residual, with the tangent scalars of their bonds.
@@ -516,13 +531,7 @@ PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
     m->t_residual += t1 - t0;
     PetscFunctionReturn(0);
   }
-  PetscCall(InternalForce(m, u, R, m->ka_with_residual));
-  if (m->ka_with_residual) {
-    if (!m->ka_u) PetscCall(VecDuplicate(u, &m->ka_u));
-    PetscCall(VecCopy(u, m->ka_u));
-    m->ka_lambda      = m->lambda;
-    m->ka_at_residual = PETSC_TRUE;
-  }
+  PetscCall(PDModelInternalForceKeepTangent(m, u, R));
   PetscCall(VecGetArray(R, &r));
   PetscCall(VecGetArrayRead(u, &uu));
   PetscCall(VecGetArrayRead(m->f_ref, &fr));

@@ -123,7 +123,7 @@ static PetscErrorCode Residual(Arc *a, PetscReal *rnorm, PetscReal *fnorm) {
 
   PetscFunctionBeginUser;
   PetscCall(PDModelApplyBoundaryValues(m, a->lam, a->u));
-  PetscCall(PDModelInternalForce(m, a->u, a->fint));
+  PetscCall(PDModelInternalForceKeepTangent(m, a->u, a->fint));
   PetscCall(VecNorm(a->fint, NORM_2, fnorm));
   PetscCall(VecWAXPY(a->R, -a->lam, m->f_ref, a->fint));
   PetscCall(VecPointwiseMult(a->w, a->R, m->fixed));
@@ -402,9 +402,10 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   const PetscBool aug = a->augmented && (type == PD_ARC_CMOD || type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
 
   PetscFunctionBeginUser;
-  *ok     = PETSC_FALSE;
-  a->its  = 0;
-  a->lits = 0;
+  *ok               = PETSC_FALSE;
+  a->its            = 0;
+  a->lits           = 0;
+  m->ka_at_residual = PETSC_FALSE; /* the last residual's tangent scalars had the history of the step before */
   if (a->kx_n) PetscCall(ImplexExtrapolate(a, a->len_prev > 0 ? dl / a->len_prev : 0));
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam    = p->lambda_n;
@@ -790,6 +791,10 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   rec->arc_rtol    = a.eq_rtol;
   rec->implex_rtol = EquilibriumRtol(sc, PETSC_TRUE);
   PetscCall(PDModelCreateOperators(m, &a.J, &a.P));
+  /* within a step nothing changes the bonds' history, levels or branches between a residual and the tangent
+     that follows it without a new residual (grants, frozen and flipped branches evaluate one): the tangent
+     scalars come from the residual's loop, as under plain control */
+  m->ka_with_residual = sc->tangent_with_residual && m->ka && !m->kp && !m->commit_history ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(VecDuplicate(m->f_ref, &a.u));
   PetscCall(VecDuplicate(m->f_ref, &u_prev));
   {
@@ -1024,6 +1029,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     for (size_t k = 0; k < sizeof work / sizeof work[0]; k++) PetscCall(VecDestroy(work[k]));
   }
   PetscCall(PDPathDestroy(&path));
+  m->ka_with_residual = m->ka_at_residual = PETSC_FALSE;
   PetscCall(PetscFree(a.branch));
   PetscCall(PetscFree(a.kx_n));
   PetscCall(PetscFree(a.kx_prev));
