@@ -218,7 +218,7 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
    kept from the last residual belong to the history before: they are not reused. */
 PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2]) {
   const PDBonds     *bd       = m->bonds;
-  const PetscBool    fuse     = energy && m->softening && !bd->nseg && !m->shift ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool    fuse     = energy && m->softening && !bd->nseg_global && !m->shift ? PETSC_TRUE : PETSC_FALSE;
   PetscInt64         count[3] = {0, 0, 0};
   PetscReal          local[2] = {0, 0};
   const PetscScalar *ul;
@@ -226,7 +226,8 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2]) {
 
   PetscFunctionBeginUser;
   m->ka_at_residual = PETSC_FALSE;
-  if (!m->softening && !bd->nseg && !m->dilatation) { /* no history, no bars, no crushing: nothing to commit or read */
+  /* decided alike on every rank (global counts): the branches below make different collective calls */
+  if (!m->softening && !bd->nseg_global && !m->dilatation) { /* no history, no bars, no crushing: nothing to commit or read */
     if (energy) PetscCall(PDModelEnergy(m, u, &energy[0], &energy[1]));
     PetscFunctionReturn(0);
   }
