@@ -120,7 +120,7 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
    the max_events most critical (ties by global bond id) move up one level. */
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelInternalForceKeepTangent(PDModel *, Vec u, Vec F);
-PetscErrorCode PDModelCommitHistory(PDModel *, Vec u, PetscReal energy[2]);
+PetscErrorCode PDModelCommitHistory(PDModel *, Vec u, PetscReal energy[2], Vec u0, PetscReal lambda0, PetscReal *change);
 /* The strain state at u that outlives it: where a criterion or a law reads it (-pd_fc, -pd_eps_cu), the
    nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */
 PetscErrorCode PDModelStrainState(PDModel *, Vec u);

@@ -540,31 +540,48 @@ static inline PetscBool SlopeElastic(const PDModel *m, PetscInt e, PetscReal s) 
   return a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]] ? PETSC_TRUE : PETSC_FALSE;
 }
 
-/* Small kinematics: du . (K(u0) - K(u1)) du, du = u1 - u0, over the bonds this rank counts, both tangents
-   with the history the model holds (the end-slope term of an accepted step's work, path.c). Per bond it is
-   (k(u0) - k(u1)) (xi . (du_j - du_i))^2 / |xi|^2, k the tangent scalar; it is zero for a bond whose slope
-   is c in both states, most of them, whose law is not evaluated. */
-PetscReal PDModelTangentChangeLocal(const PDModel *m, const PetscScalar *u0, const PetscScalar *u1) {
+/* Small kinematics: adds to *sum, bond by bond in bond order, the part of du . (K(u0) - K(u1)) du, du = u1 - u0,
+   of the bonds e0 .. e0 + n - 1 this rank counts, both tangents with the history the model holds (the
+   end-slope term of an accepted step's work, path.c). s1 are the bonds' stretches at u1 and s0 at u0
+   (PDModelBondStretches). Per bond it is (k(u0) - k(u1)) (xi . (du_j - du_i))^2 / |xi|^2, k the tangent
+   scalar; it is zero for a bond whose slope is c in both states, most of them, whose law is not evaluated.
+   s0 NULL says that the history is the one committed at u0 (the history commit's case): a bond whose
+   history lies below its material's onset by more than the commit's margin had its stretch at u0 below it
+   as well, so its slope at u0 is c without the stretch, which is then formed only for the other bonds. */
+void PDModelTangentChangeBlock(const PDModel *m, const PetscScalar *u0, const PetscScalar *u1, PetscInt e0, PetscInt n, const PetscReal *s0,
+                               const PetscReal *s1, PetscReal *sum) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscInt   bs  = m->bs;
-  PetscReal        sum = 0;
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt i = bd->a[e], j = bd->b[e];
-    PetscReal      xi[3], L2 = 0, d0 = 0, d1 = 0, s0, s1, dd, g, gp0, gp1;
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt  e = e0 + k, i = bd->a[e], j = bd->b[e];
+    const PetscBool elastic1 = SlopeElastic(m, e, s1[k]);
+    PetscReal       xi[3], L2 = 0, d0 = 0, d1 = 0, dd, g, gp0, gp1;
+    if (elastic1 && (s0 ? SlopeElastic(m, e, s0[k]) : m->kappa[e] < m->onset[bd->material[e]] * (1 - 1e-12))) continue;
+    if (!PDBondCountedHere(lat, bd, e)) continue;
     for (PetscInt r = 0; r < bs; r++) {
       xi[r] = lat->x[3 * j + r] - lat->x[3 * i + r];
       L2 += xi[r] * xi[r];
       d0 += xi[r] * PetscRealPart(u0[bs * j + r] - u0[bs * i + r]);
       d1 += xi[r] * PetscRealPart(u1[bs * j + r] - u1[bs * i + r]);
     }
-    s0 = d0 / L2;
-    s1 = d1 / L2;
-    if ((SlopeElastic(m, e, s0) && SlopeElastic(m, e, s1)) || !PDBondCountedHere(lat, bd, e)) continue;
-    BondForce(m, e, s0, &g, &gp0);
-    BondForce(m, e, s1, &g, &gp1);
+    if (!s0 && elastic1 && SlopeElastic(m, e, d0 / L2)) continue;
+    BondForce(m, e, d0 / L2, &g, &gp0);
+    BondForce(m, e, d1 / L2, &g, &gp1);
     dd = d1 - d0;
-    sum += (gp0 - gp1) / PetscSqrtReal(L2) * dd * dd / L2;
+    *sum += (gp0 - gp1) / PetscSqrtReal(L2) * dd * dd / L2;
+  }
+}
+
+/* The same sum over every bond this rank counts (PDModelTangentChangeBlock), a block of stretches at a time. */
+PetscReal PDModelTangentChangeLocal(const PDModel *m, const PetscScalar *u0, const PetscScalar *u1) {
+  PetscReal sum = 0;
+  for (PetscInt e0 = 0; e0 < m->bonds->nbonds; e0 += PD_STRETCH_BLOCK) {
+    const PetscInt n = PetscMin(PD_STRETCH_BLOCK, m->bonds->nbonds - e0);
+    PetscReal      s0[PD_STRETCH_BLOCK], s1[PD_STRETCH_BLOCK];
+    PDModelBondStretches(m, u0, e0, n, s0);
+    PDModelBondStretches(m, u1, e0, n, s1);
+    PDModelTangentChangeBlock(m, u0, u1, e0, n, s0, s1, &sum);
   }
   return sum;
 }

@@ -81,8 +81,10 @@ PetscErrorCode PDModelTangentApplyLocal(PDModel *, const PetscScalar *u, const P
                                         const PetscScalar *x, PetscScalar *y);
 PetscReal      PDModelBondStretch(const PDModel *, const PetscScalar *u, PetscInt e);
 #define PD_STRETCH_BLOCK 256 /* bonds whose stretches PDModelBondStretches fills at once */
-void      PDModelBondStretches(const PDModel *, const PetscScalar *u, PetscInt e0, PetscInt n, PetscReal *s);
-void      PDModelBondEnergies(const PDModel *, PetscInt e0, PetscInt n, const PetscReal *s, PetscReal *es, PetscReal *ed);
+void PDModelBondStretches(const PDModel *, const PetscScalar *u, PetscInt e0, PetscInt n, PetscReal *s);
+void PDModelBondEnergies(const PDModel *, PetscInt e0, PetscInt n, const PetscReal *s, PetscReal *es, PetscReal *ed);
+void PDModelTangentChangeBlock(const PDModel *, const PetscScalar *u0, const PetscScalar *u1, PetscInt e0, PetscInt n, const PetscReal *s0,
+                               const PetscReal *s1, PetscReal *sum);
 PetscReal PDModelTangentChangeLocal(const PDModel *, const PetscScalar *u0, const PetscScalar *u1);
 void      PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void      PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);

@@ -214,18 +214,29 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
 /* Commits the state u: each bond's largest stretch (held below the threshold its level has not passed),
    the limiter's levels, the bar segments' plastic state, the crushing's threshold rise, the damage counts;
    with energy, the stored and dissipated energy at u with the committed history (PDModelEnergy), which a
-   model without bar segments and crushing sums in the same loop over the stretches. The tangent scalars
-   kept from the last residual belong to the history before: they are not reused. */
-PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2]) {
+   model without bar segments and crushing sums in the same loop over the stretches. With change, also the
+   end-slope term du . (K(u0) - K(u)) du of the step from u0 (at load factor lambda0) to u, both tangents
+   with the history before the commit (PDModelTangentChange, small kinematics), which is the one committed
+   at u0; a softening model takes it in the same loop, from the stretches at u the commit reads. The tangent scalars kept from the last
+   residual belong to the history before: they are not reused. */
+PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2], Vec u0, PetscReal lambda0, PetscReal *change) {
   const PDBonds     *bd       = m->bonds;
   const PetscBool    fuse     = energy && m->softening && !bd->nseg_global && !m->shift ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool    fuse_c   = change && m->softening ? PETSC_TRUE : PETSC_FALSE;
   PetscInt64         count[3] = {0, 0, 0};
-  PetscReal          local[2] = {0, 0};
+  PetscReal          local[2] = {0, 0}, csum = 0;
   const PetscScalar *ul;
-  Vec                uloc;
+  PetscScalar       *u0l = NULL;
+  Vec                uloc, u0loc;
 
   PetscFunctionBeginUser;
   m->ka_at_residual = PETSC_FALSE;
+  if (change && !fuse_c) { /* before the history moves */
+    const PetscReal lam = m->lambda;
+    m->lambda           = lambda0; /* u0's constrained values */
+    PetscCall(PDModelTangentChange(m, u0, u, change));
+    m->lambda = lam;
+  }
   /* decided alike on every rank (global counts): the branches below make different collective calls */
   if (!m->softening && !bd->nseg_global && !m->dilatation) { /* no history, no bars, no crushing: nothing to commit or read */
     if (energy) PetscCall(PDModelEnergy(m, u, &energy[0], &energy[1]));
@@ -233,11 +244,19 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2]) {
   }
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  if (fuse_c) { /* u0 with its ghosts and its constrained values, as PDModelScatterToLocal gives u */
+    PetscCheck(m->scene->kinematics == PD_KINEMATICS_SMALL, m->lat->comm, PETSC_ERR_SUP,
+               "the tangent's change by bonds needs small kinematics");
+    PetscCall(PDModelGetProductInput(m, u0, PETSC_FALSE, &u0l, &u0loc));
+    for (PetscInt k = 0; k < m->bs * m->lat->nlocal; k++)
+      if (m->fixed_local[k]) u0l[k] = lambda0 * m->uref_local[k];
+  }
   if (m->dilatation) PetscCall(PDModelNodalDilatation(m, ul)); /* the strain state, from the same local values */
   for (PetscInt e0 = 0; m->softening && e0 < bd->nbonds; e0 += PD_STRETCH_BLOCK) {
     const PetscInt n = PetscMin(PD_STRETCH_BLOCK, bd->nbonds - e0);
     PetscReal      s[PD_STRETCH_BLOCK];
     PDModelBondStretches(m, ul, e0, n, s);
+    if (fuse_c) PDModelTangentChangeBlock(m, u0l, ul, e0, n, NULL, s, &csum); /* the history is u0's commit */
     for (PetscInt k = 0; k < n; k++) {
       const PetscInt  e   = e0 + k;
       const PetscReal cap = s[k] < m->onset[bd->material[e]] * (1 - 1e-12) ? PETSC_MAX_REAL : Threshold(m, e);
@@ -247,11 +266,13 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2]) {
     }
     if (fuse) PDModelBondEnergies(m, e0, n, s, &local[0], &local[1]);
   }
+  if (fuse_c) PetscCall(PDModelRestoreProductInput(m, &u0l, &u0loc));
   for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, PDModelBondStretch(m, ul, bd->seg_bond[sg]));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(PDModelConfine(m));
   PetscCall(CountsFinish(m, count));
   PetscCall(PetscLogEventEnd(PD_LOG.history, 0, 0, 0, 0));
+  if (fuse_c) PetscCall(MPIU_Allreduce(&csum, change, 1, MPIU_REAL, MPIU_SUM, m->lat->comm));
   if (fuse)
     PetscCall(MPIU_Allreduce(local, energy, 2, MPIU_REAL, MPIU_SUM, m->lat->comm));
   else if (energy)

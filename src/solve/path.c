@@ -36,12 +36,7 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
 
   PetscFunctionBeginUser;
   PetscCall(VecWAXPY(p->du, -1, p->u_n, u));
-  if (m->ka && m->scene->kinematics == PD_KINEMATICS_SMALL) { /* the tangent varies: end-slope correction (before the history moves) */
-    PetscReal change;
-    m->lambda = p->lambda_n; /* u_n's constrained values */
-    PetscCall(PDModelTangentChange(m, p->u_n, u, &change));
-    c = change;
-  } else if (m->ka) {
+  if (m->ka && m->scene->kinematics != PD_KINEMATICS_SMALL) { /* the tangent varies: end-slope correction (before the history moves) */
     const PetscReal lam_u = m->lambda;
     m->lambda             = p->lambda_n;
     PetscCall(PDModelTangentApplyAt(m, p->u_n, p->du, p->ku, PETSC_TRUE));
@@ -52,7 +47,12 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
     m->lambda = lam_u;
   }
   m->lambda = lam;
-  PetscCall(PDModelCommitHistory(m, u, energy));
+  if (m->ka && m->scene->kinematics == PD_KINEMATICS_SMALL) { /* the same term by bonds, in the commit's loop */
+    PetscReal change;
+    PetscCall(PDModelCommitHistory(m, u, energy, p->u_n, p->lambda_n, &change));
+    c = change;
+  } else
+    PetscCall(PDModelCommitHistory(m, u, energy, NULL, 0, NULL));
   PetscCall(PDModelMeasure(m, u, &row->load, &row->disp, &row->cmod));
   PetscCall(VecAXPY(p->f_n, 1, m->f_work));
   PetscCall(VecDot(p->f_n, p->du, &dw));

@@ -16,10 +16,14 @@
 /* GAMG's Galerkin products P^T A P on several ranks (the only matrix triple products pdimplicit makes):
    PETSc's default parallel algorithm keeps intermediate products for a later numeric reuse, and they set the
    peak memory of a whole run, while a hierarchy rebuilt only when stale (pc_refresh.c) seldom reuses them.
-   The all-at-once algorithm keeps none, at the same wall time (docs/benchmarks/memory.md, rows "default"
-   and "Galerkin products kept for reuse"). A choice on the command line stands; one rank has no such
-   algorithm and needs none. */
-static PetscErrorCode ChooseGalerkinProduct(MPI_Comm comm) {
+   The all-at-once algorithm keeps none, at the same wall time of a whole run (docs/benchmarks/memory.md, rows
+   "default" and "Galerkin products kept for reuse"), but its product of the finest level takes several times
+   as long as the row-merged one (`nonscalable`, whose intermediates are as large as the default's). Below
+   PD_GALERKIN_LEAN_NODES nodes, where those intermediates take a few hundred megabytes, the faster product
+   is taken; from there on, where memory limits what a machine can run, the leaner one (docs/solvers.md,
+   "The Galerkin product"). A choice on the command line stands; one rank has no such algorithm and needs none. */
+#define PD_GALERKIN_LEAN_NODES 100000
+static PetscErrorCode ChooseGalerkinProduct(MPI_Comm comm, PetscInt nodes) {
   PetscMPIInt size;
   PetscBool   via, alg;
 
@@ -27,7 +31,8 @@ static PetscErrorCode ChooseGalerkinProduct(MPI_Comm comm) {
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-matptap_via", &via));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mat_product_algorithm", &alg));
-  if (size > 1 && !via && !alg) PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", "allatonce"));
+  if (size > 1 && !via && !alg)
+    PetscCall(PetscOptionsSetValue(NULL, "-matptap_via", nodes < PD_GALERKIN_LEAN_NODES ? "nonscalable" : "allatonce"));
   PetscFunctionReturn(0);
 }
 
@@ -72,7 +77,7 @@ PetscErrorCode PDSolverConfigureKSP(PDModel *m, KSP ksp) {
      (SwitchToGAMG) within seconds rather than minutes */
   PetscCall(KSPSetTolerances(ksp, m->linear ? 1e-9 : 1e-6, PETSC_DEFAULT, PETSC_DEFAULT, m->softening ? 2000 : 20000));
   PetscCall(PDInterruptWatchKSP(ksp));
-  PetscCall(ChooseGalerkinProduct(PetscObjectComm((PetscObject)ksp)));
+  PetscCall(ChooseGalerkinProduct(PetscObjectComm((PetscObject)ksp), m->lat->nglobal));
   PetscCall(ChooseNullPivots(m));
   PetscFunctionReturn(0);
 }
