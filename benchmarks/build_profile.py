@@ -51,7 +51,8 @@ def run(exe):
     ev, solve = parse_log(logf)
     rows = list(csv.DictReader(open(os.path.join(out, "curve.csv"))))
     return {"exit": code, "wall_s": wall, "solve_stage_s": solve, "events_s": ev, "status": s["status"], "steps": s.get("steps"),
-            "newton_its": s.get("newton_its"), "ksp_its": s.get("ksp_its"), "peak_N": s.get("peak_load_N"), "rows": rows}
+            "newton_its": s.get("newton_its"), "ksp_its": s.get("ksp_its"), "peak_N": s.get("peak_load_N"),
+            "peak_rss_bytes": s.get("memory", {}).get("peak_rss_bytes"), "bonds": s.get("bonds"), "rows": rows}
 
 
 def compare(a, b):
@@ -80,16 +81,18 @@ def report():
              "two ranks, `-log_view`: a binary built from the baseline commit and one built from the change's, one after the other "
              "in one invocation. Event times are the solve stage's (s, the largest over the ranks); the ratio is of wall times. "
              "Curves: the columns of curve.csv (all but the wall time) in which the two runs differ, with the largest relative "
-             "difference; none means the same bits.", ""]
+             "difference; none means the same bits. Peak memory: the ranks' largest resident sets summed, as `summary.json` "
+             "reports it (- where the entry predates the column).", ""]
     for label in sorted(res, key=lambda k: res[k]["order"]):
         r = res[label]
-        lines += ["## " + label, "", "| build | commit | wall (s) | solve stage (s) | " + " | ".join(EVENTS) + " | steps / Newton / Krylov | peak (N) |",
-                  "|---|---|---|---|" + "---|" * len(EVENTS) + "---|---|"]
+        lines += ["## " + label, "", "| build | commit | wall (s) | solve stage (s) | " + " | ".join(EVENTS) + " | steps / Newton / Krylov | peak (N) | peak memory (MB) |",
+                  "|---|---|---|---|" + "---|" * len(EVENTS) + "---|---|---|"]
         for name in ("baseline", "change"):
             x = r[name]
-            lines.append("| %s | %s | %.1f | %.1f | %s | %s / %s / %s | %.1f |" % (
+            mem = "%.0f" % (x["peak_rss_bytes"] / 1e6) if x.get("peak_rss_bytes") else "-"
+            lines.append("| %s | %s | %.1f | %.1f | %s | %s / %s / %s | %.1f | %s |" % (
                 name, x["commit"], x["wall_s"], x["solve_stage_s"], " | ".join("%.1f" % x["events_s"].get(e, 0) for e in EVENTS), x["steps"],
-                x["newton_its"], x["ksp_its"], x["peak_N"]))
+                x["newton_its"], x["ksp_its"], x["peak_N"], mem))
         lines += ["", "Wall time of the change over the baseline's: %.2f. Curves: %s." % (
             r["change"]["wall_s"] / r["baseline"]["wall_s"],
             ", ".join("%s %.1e" % (k, v) for k, v in sorted(r["curve_difference"].items())) or "none"), ""]
