@@ -31,12 +31,23 @@ typedef struct {
   PetscReal        ka_lambda;        /* and this load factor */
   /* a residual at the displacement of the last one, after a limiter grant, recomputes only the rows of the
      bonds the grant changed (PDModelResidual, -pd_residual_rows) */
-  PetscBool       track_grants;     /* the limiter records the bonds it changes */
-  PetscBool       rows_after_grant; /* set by the driver after a grant, taken by the next residual */
-  PetscInt       *changed;          /* bonds whose level changed since the last residual */
-  PetscInt        nchanged;         /* their count; -1: too many to be worth it */
-  PetscInt        changed_cap;
-  Vec             r_last;            /* the last residual, at ka_u and ka_lambda */
+  PetscBool track_grants;     /* the limiter records the bonds it changes */
+  PetscBool rows_after_grant; /* set by the driver after a grant, taken by the next residual */
+  PetscInt *changed;          /* bonds whose level changed since the last residual */
+  PetscInt  nchanged;         /* their count; -1: too many to be worth it */
+  PetscInt  changed_cap;
+  Vec       r_last; /* the last residual, at ka_u and ka_lambda */
+  /* path following under IMPL-EX: the internal force of the last residual's whole loop (at f_last_u and
+     f_last_lambda), and the bonds whose force an accepted step's history commit changes, with their force
+     (over the bond's length) before it, so that PDModelMeasure updates that force bond by bond */
+  PetscBool       keep_force; /* set by the driver: keep f_last */
+  PetscBool       f_last_valid;
+  Vec             f_last, f_last_u;
+  PetscReal       f_last_lambda;
+  PetscBool       fchange_ready; /* fchange_bond lists the bonds whose force changes since f_last */
+  PetscInt       *fchange_bond, nfchange, fchange_cap;
+  PetscReal      *fchange_g;
+  PetscInt        forces_by_change;  /* accepted steps' forces so evaluated */
   PetscInt        residuals_by_rows; /* residuals so evaluated */
   PDModelRowIndex rows;
   PDLaw           law[PD_MATERIALS_ALL]; /* the materials', an elastic one for PD_MATERIAL_ELASTIC, the bars' bond slip */
@@ -121,6 +132,9 @@ PetscErrorCode PDModelMeasure(PDModel *, Vec u, PetscReal *load, PetscReal *disp
 PetscErrorCode PDModelGrantEvents(PDModel *, Vec u, PetscInt max_events, PetscInt *ncandidates, PetscInt *granted);
 PetscErrorCode PDModelInternalForceKeepTangent(PDModel *, Vec u, Vec F);
 PetscErrorCode PDModelCommitHistory(PDModel *, Vec u, PetscReal energy[2], Vec u0, PetscReal lambda0, PetscReal *change);
+/* Bond e's force over its length at u (local, small kinematics), recorded as one whose force the next history
+   commit changes (m->fchange_bond; PDModelMeasure), up to an eighth of the bonds. */
+PetscErrorCode PDModelNoteForceChange(PDModel *, const PetscScalar *u, PetscInt e);
 /* The strain state at u that outlives it: where a criterion or a law reads it (-pd_fc, -pd_eps_cu), the
    nodes' dilatation into m->dilatation. PDModelCommitHistory takes it first. */
 PetscErrorCode PDModelStrainState(PDModel *, Vec u);

@@ -14,6 +14,16 @@ static const char *base = "-pd_domain 0,0,0,0.04,0.025,0.02 -pd_dx 0.005 -pd_E 3
 
 static PetscInt nplastic; /* bar segments on their plastic branch in the last case's state */
 
+/* Uniform values in [-1, 1] from a fixed seed, so that every run draws the same state. */
+static PetscErrorCode RandomCreate(unsigned long seed, PetscRandom *rnd) {
+  PetscFunctionBeginUser;
+  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, rnd));
+  PetscCall(PetscRandomSetInterval(*rnd, -1, 1));
+  PetscCall(PetscRandomSetSeed(*rnd, seed));
+  PetscCall(PetscRandomSeed(*rnd));
+  PetscFunctionReturn(0);
+}
+
 /* The model of the base scene with the extra options. */
 static PetscErrorCode ModelCreate(const char *extra, PDScene *sc, PDLattice *lat, PDBonds *bd, PDModel *m) {
   PetscFunctionBeginUser;
@@ -58,10 +68,7 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscCall(VecDuplicate(u, &Jv));
   PetscCall(VecDuplicate(u, &Rp));
   PetscCall(VecDuplicate(u, &Rm));
-  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
-  PetscCall(PetscRandomSetInterval(rnd, -1, 1));
-  PetscCall(PetscRandomSetSeed(rnd, 7));
-  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(RandomCreate(7, &rnd));
   /* displacements of a few times s0 dx: stretches from compression to well into softening */
   PetscCall(VecSetRandom(u, rnd));
   PetscCall(VecScale(u, 4e-4 * sc.dx));
@@ -202,10 +209,7 @@ static PetscErrorCode ProductFromBonds(const char *extra, PetscReal *diff, Petsc
   PetscCall(VecDuplicate(m.f_ref, &u));
   PetscCall(VecDuplicate(u, &x));
   PetscCall(VecDuplicate(u, &Px));
-  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
-  PetscCall(PetscRandomSetInterval(rnd, -1, 1));
-  PetscCall(PetscRandomSetSeed(rnd, 5));
-  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(RandomCreate(5, &rnd));
   /* a dilation about the middle node, which stretches each of its bonds (a compressed bond keeps its
      stiffness), and a random part; x random on constrained dofs too (P keeps only their diagonal) */
   PetscCall(VecSetRandom(u, rnd));
@@ -360,10 +364,7 @@ static PetscErrorCode AcceptedStepSums(const char *extra, PetscReal *stretch_dif
   PetscCall(VecDuplicate(u0, &du));
   PetscCall(VecDuplicate(u0, &k0));
   PetscCall(VecDuplicate(u0, &k1));
-  PetscCall(PetscRandomCreate(PETSC_COMM_WORLD, &rnd));
-  PetscCall(PetscRandomSetInterval(rnd, -1, 1));
-  PetscCall(PetscRandomSetSeed(rnd, 13));
-  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(RandomCreate(13, &rnd));
   PetscCall(VecSetRandom(u0, rnd));
   PetscCall(VecScale(u0, 4e-4 * sc.dx));
   PetscCall(VecSetRandom(du, rnd));
@@ -418,6 +419,76 @@ static PetscErrorCode AcceptedStepSums(const char *extra, PetscReal *stretch_dif
     for (size_t k = 0; k < sizeof v / sizeof *v; k++) PetscCall(VecDestroy(v[k]));
   }
   PetscCall(PDModelDestroyOperators(&J, &P));
+  PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
+  PetscFunctionReturn(0);
+}
+
+/* An IMPL-EX step's measurement (PDModelMeasure after the history commit) from the last residual's force and the
+   bonds ImplexError notes (arclength.c), against the whole loop with the committed history, in a random state:
+   the step's secant history at half of each bond's stretch, the real one at its stretch. The largest difference
+   over the largest force, the bonds noted and whether the measurement took the change. */
+static PetscErrorCode ForceByChange(const char *extra, PetscReal *diff, PetscInt *noted, PetscInt *used) {
+  PDScene            sc;
+  PDLattice          lat;
+  PDBonds            bd;
+  PDModel            m;
+  Vec                u, f, loc;
+  PetscRandom        rnd;
+  const PetscScalar *ul;
+  unsigned char     *branch;
+  PetscReal         *kr, load, disp, cmod, dmax, fmax;
+
+  PetscFunctionBeginUser;
+  PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
+  PetscCall(VecDuplicate(m.f_ref, &u));
+  PetscCall(VecDuplicate(u, &f));
+  PetscCall(RandomCreate(17, &rnd));
+  PetscCall(VecSetRandom(u, rnd));
+  PetscCall(VecScale(u, 1.2e-4 * sc.dx)); /* a few bonds past their onset: a crack's band, not all of them */
+  PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
+  PetscCall(PetscMalloc2(bd.nbonds, &branch, bd.nbonds, &kr));
+  PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
+  for (PetscInt e0 = 0; e0 < bd.nbonds; e0 += PD_STRETCH_BLOCK) {
+    const PetscInt n = PetscMin(PD_STRETCH_BLOCK, bd.nbonds - e0);
+    PetscReal      s[PD_STRETCH_BLOCK];
+    PDModelBondStretches(&m, ul, e0, n, s);
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscInt e = e0 + k;
+      m.kappa[e]       = PetscMax(0, 0.5 * s[k]);                  /* the step's (extrapolated) history */
+      kr[e]            = PetscMax(0.25 * PetscMax(0, s[k]), s[k]); /* the real one, from a history at a quarter */
+      m.level[e] = m.level_n[e] = PD_BOND_LEVEL_OPEN;
+      branch[e]                 = PD_BRANCH_SECANT;
+    }
+  }
+  PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
+  /* the step's last residual on its secants, then the noting as ImplexError does it */
+  m.branch     = branch;
+  m.keep_force = PETSC_TRUE;
+  PetscCall(PDModelInternalForceKeepTangent(&m, u, f));
+  PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
+  m.nfchange = 0;
+  for (PetscInt e = 0; e < bd.nbonds; e++)
+    if (m.law[bd.material[e]].kind != PD_LAW_ELASTIC && kr[e] != m.kappa[e] && PetscMax(kr[e], m.kappa[e]) >= m.onset[bd.material[e]])
+      PetscCall(PDModelNoteForceChange(&m, ul, e));
+  PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
+  m.fchange_ready = PETSC_TRUE;
+  m.branch        = NULL;
+  *noted          = m.nfchange;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, noted, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+  /* the commit, the measurement, and the whole loop with the committed history */
+  PetscCall(PetscArraycpy(m.kappa, kr, bd.nbonds));
+  PetscCall(PDModelMeasure(&m, u, &load, &disp, &cmod));
+  PetscCall(PDModelInternalForce(&m, u, f));
+  PetscCall(VecNorm(f, NORM_INFINITY, &fmax));
+  PetscCall(VecAXPY(f, -1, m.f_work));
+  PetscCall(VecNorm(f, NORM_INFINITY, &dmax));
+  *diff = dmax / fmax;
+  *used = m.forces_by_change;
+  PetscCall(PetscFree2(branch, kr));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&f));
+  m.keep_force = PETSC_FALSE;
   PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
   PetscFunctionReturn(0);
 }
@@ -565,6 +636,22 @@ int main(int argc, char **argv) {
       Check(ndiff == 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)ndiff, 0);
       PetscCall(PetscSNPrintf(what, sizeof what, "the committed state has softening bonds: %s", acc[k]));
       Check(nsoft > 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)nsoft, 1);
+    }
+  }
+  if (!products_only) {
+    /* an IMPL-EX step's force after the commit, from the bonds whose history it changes */
+    const char *fc[] = {"-pd_law nonlinear", "-pd_law bilinear -pd_strength_scatter 0.05"};
+    for (size_t k = 0; k < sizeof fc / sizeof *fc; k++) {
+      PetscReal diff;
+      PetscInt  noted, used;
+      char      what[200];
+      PetscCall(ForceByChange(fc[k], &diff, &noted, &used));
+      PetscCall(PetscSNPrintf(what, sizeof what, "force by the changed bonds equals the whole loop's to 1e-13 of the largest: %s", fc[k]));
+      Check(diff < 1e-13 ? PETSC_TRUE : PETSC_FALSE, what, diff, 1e-13);
+      PetscCall(PetscSNPrintf(what, sizeof what, "the measurement took the changed bonds' forces: %s", fc[k]));
+      Check(used == 1 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)used, 1);
+      PetscCall(PetscSNPrintf(what, sizeof what, "bonds noted as changed: %s", fc[k]));
+      Check(noted > 0 ? PETSC_TRUE : PETSC_FALSE, what, (PetscReal)noted, 1);
     }
   }
   {

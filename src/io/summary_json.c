@@ -252,8 +252,9 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   PetscCall(PDEscapeJSON(rec->solver, &text));
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"solver\": %s,\n  \"pc_reach\": %.4f,\n  \"linear\": %s,\n  \"jacobian_assemblies\": %" PetscInt_FMT
-                         ",\n  \"residuals_by_rows\": %" PetscInt_FMT ",\n",
-                         text, (double)m->pc_reach, m->linear ? "true" : "false", m->jacobian_assemblies, m->residuals_by_rows));
+                         ",\n  \"residuals_by_rows\": %" PetscInt_FMT ",\n  \"forces_by_change\": %" PetscInt_FMT ",\n",
+                         text, (double)m->pc_reach, m->linear ? "true" : "false", m->jacobian_assemblies, m->residuals_by_rows,
+                         m->forces_by_change));
   PetscCall(PetscFree(text));
   PetscCall(PetscFPrintf(comm, fp,
                          "  \"steps\": %" PetscInt_FMT ",\n  \"newton_its\": %" PetscInt_FMT ",\n  \"ksp_its\": %" PetscInt_FMT ",\n",

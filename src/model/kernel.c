@@ -306,6 +306,36 @@ PetscErrorCode PDModelInternalForceRows(PDModel *m, const PetscScalar *u, PetscI
   PetscFunctionReturn(0);
 }
 
+/* Small kinematics: bond e's force over its length at the local displacements u (SmallForce), and its xi. */
+PetscReal PDModelBondForceSmall(const PDModel *m, const PetscScalar *u, PetscInt e, PetscReal xi[3]) {
+  const PDLattice *lat   = m->lat;
+  const PetscInt   i     = m->bonds->a[e];
+  PetscReal        xc[3] = {0, 0, 0}, uc[3] = {0, 0, 0}, L2, dot;
+  for (PetscInt r = 0; r < m->bs; r++) {
+    xc[r] = lat->x[3 * i + r];
+    uc[r] = PetscRealPart(u[m->bs * i + r]);
+  }
+  dot = Projection(m->bs, lat->x, u, m->bonds->b[e], xc, uc, xi, &L2);
+  return SmallForce(m, e, dot, L2, NULL);
+}
+
+/* Adds to the owned rows of f (the internal force with the bonds' forces over their lengths g_old) the change of
+   the n bonds' forces to what they are now, at the local displacements u: the whole loop's force with the new
+   history, to round-off (the sums run in another order). */
+void PDModelForceChangeLocal(const PDModel *m, const PetscScalar *u, PetscInt n, const PetscInt *bonds, const PetscReal *g_old,
+                             PetscScalar *f) {
+  const PetscInt nowned = m->lat->nowned, bs = m->bs;
+  for (PetscInt k = 0; k < n; k++) {
+    const PetscInt  e = bonds[k], i = m->bonds->a[e], j = m->bonds->b[e];
+    PetscReal       xi[3];
+    const PetscReal dg = PDModelBondForceSmall(m, u, e, xi) - g_old[k];
+    for (PetscInt r = 0; r < bs; r++) {
+      if (i < nowned) f[bs * i + r] -= dg * xi[r];
+      if (j < nowned) f[bs * j + r] += dg * xi[r];
+    }
+  }
+}
+
 /* Energy of bond e of concrete at stretch s, reference length L0: stored c (1 - d) s^2 |xi| / 2 (c s^2 |xi| / 2
    in compression) and dissipated c |xi| (W(kappa) - (1 - d) kappa^2 / 2), W the law's envelope work. The |xi|
    turns the stretch integral into work for the standard stretch (ds = e.deta / |xi|); with the modified

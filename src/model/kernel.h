@@ -86,6 +86,9 @@ void PDModelBondEnergies(const PDModel *, PetscInt e0, PetscInt n, const PetscRe
 void PDModelTangentChangeBlock(const PDModel *, const PetscScalar *u0, const PetscScalar *u1, PetscInt e0, PetscInt n, const PetscReal *s0,
                                const PetscReal *s1, PetscReal *sum);
 PetscReal PDModelTangentChangeLocal(const PDModel *, const PetscScalar *u0, const PetscScalar *u1);
+PetscReal PDModelBondForceSmall(const PDModel *, const PetscScalar *u, PetscInt e, PetscReal xi[3]);
+void      PDModelForceChangeLocal(const PDModel *, const PetscScalar *u, PetscInt n, const PetscInt *bonds, const PetscReal *g_old,
+                                  PetscScalar *f);
 void      PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void      PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal PDModelSteelStressLocal(PDModel *, const PetscScalar *u);

@@ -2,6 +2,7 @@
 #include "pd_model.h"
 #include <petscbt.h>
 #include "kernel.h"
+#include "pd_log.h"
 #include <stdint.h>
 
 static PetscErrorCode CreateGlobalVec(const PDLattice *lat, PetscInt bs, Vec *v) {
@@ -371,6 +372,9 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree(m->ka));
   PetscCall(VecDestroy(&m->ka_u)); /* left by a static run that stopped on an error */
   PetscCall(VecDestroy(&m->r_last));
+  PetscCall(VecDestroy(&m->f_last));
+  PetscCall(VecDestroy(&m->f_last_u));
+  PetscCall(PetscFree2(m->fchange_bond, m->fchange_g));
   PetscCall(PetscFree(m->changed));
   PetscCall(PDModelRowIndexDestroy(m));
   PetscCall(PetscFree(m->kb));
@@ -448,10 +452,21 @@ PetscErrorCode PDModelInternalForce(PDModel *m, Vec u, Vec F) {
 
 /* Internal forces at u and, where the drivers take the tangent from the residual's loop (m->ka_with_residual),
    the tangent scalars at u from the same loop, kept with the point they belong to, so that a Jacobian at
-   that point (PDModelJacobian) does not go over the bonds again. */
+   that point (PDModelJacobian) does not go over the bonds again; where the driver asks (m->keep_force), the
+   force too, from which PDModelMeasure updates the bonds a history commit changes. */
 PetscErrorCode PDModelInternalForceKeepTangent(PDModel *m, Vec u, Vec F) {
   PetscFunctionBeginUser;
   PetscCall(InternalForce(m, u, F, m->ka_with_residual));
+  m->fchange_ready = PETSC_FALSE; /* a list of changed forces refers to the force before */
+  m->f_last_valid  = PETSC_FALSE;
+  if (m->keep_force) { /* for PDModelMeasure after the history commit (InternalForceByChange) */
+    if (!m->f_last) PetscCall(VecDuplicate(F, &m->f_last));
+    if (!m->f_last_u) PetscCall(VecDuplicate(u, &m->f_last_u));
+    PetscCall(VecCopy(F, m->f_last));
+    PetscCall(VecCopy(u, m->f_last_u));
+    m->f_last_lambda = m->lambda;
+    m->f_last_valid  = PETSC_TRUE;
+  }
   if (m->ka_with_residual) {
     if (!m->ka_u) PetscCall(VecDuplicate(u, &m->ka_u));
     PetscCall(VecCopy(u, m->ka_u));
@@ -524,7 +539,9 @@ PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
   (void)snes;
   PetscCall(PetscTime(&t0));
   if (m->rows_after_grant && m->ka_with_residual) PetscCall(ResidualRowsAfterGrant(m, u, R, &rows));
-  m->nchanged = 0;
+  m->nchanged      = 0;
+  m->fchange_ready = PETSC_FALSE; /* a list of changed forces refers to the residual before */
+  m->f_last_valid  = PETSC_FALSE;
   if (rows) {
     m->residuals_by_rows++;
     PetscCall(PetscTime(&t1));
@@ -618,11 +635,69 @@ PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u) {
 /* Curve quantities: load (applied force, or reaction of a displacement region along its direction),
    mean displacement of the displacement region along the load direction, and the CMOD gauge. Leaves the
    internal force f_int(u) in m->f_work for the drivers' external-work sums. */
-PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod) {
-  PetscScalar v;
+/* Bond e's force over its length at u (local) before the history commit, for PDModelMeasure. */
+PetscErrorCode PDModelNoteForceChange(PDModel *m, const PetscScalar *u, PetscInt e) {
+  PetscReal xi[3];
 
   PetscFunctionBeginUser;
-  PetscCall(PDModelInternalForce(m, u, m->f_work));
+  if (m->nfchange < 0) PetscFunctionReturn(0);
+  if (m->nfchange == m->fchange_cap) {
+    PetscInt  *b;
+    PetscReal *g;
+    if (m->fchange_cap >= m->bonds->nbonds / 8) { /* beyond that the whole loop costs about as much */
+      m->nfchange = -1;
+      PetscFunctionReturn(0);
+    }
+    m->fchange_cap = PetscMax(256, 2 * m->fchange_cap);
+    PetscCall(PetscMalloc2(m->fchange_cap, &b, m->fchange_cap, &g));
+    PetscCall(PetscArraycpy(b, m->fchange_bond, m->nfchange));
+    PetscCall(PetscArraycpy(g, m->fchange_g, m->nfchange));
+    PetscCall(PetscFree2(m->fchange_bond, m->fchange_g));
+    m->fchange_bond = b;
+    m->fchange_g    = g;
+  }
+  m->fchange_bond[m->nfchange] = e;
+  m->fchange_g[m->nfchange++]  = PDModelBondForceSmall(m, u, e, xi);
+  PetscFunctionReturn(0);
+}
+
+/* The internal force at u into F from the last residual's (at u, with the history before the commit) and the
+   change of the bonds listed since (PDModelNoteForceChange), where every rank has such a list; *done says
+   whether it did. */
+static PetscErrorCode InternalForceByChange(PDModel *m, Vec u, Vec F, PetscBool *done) {
+  PetscBool          mine, all, same = PETSC_FALSE;
+  const PetscScalar *ul;
+  PetscScalar       *f;
+  Vec                uloc;
+
+  PetscFunctionBeginUser;
+  *done            = PETSC_FALSE;
+  mine             = m->fchange_ready && m->nfchange >= 0 && m->f_last_valid && m->lambda == m->f_last_lambda ? PETSC_TRUE : PETSC_FALSE;
+  m->fchange_ready = PETSC_FALSE;
+  PetscCall(MPIU_Allreduce(&mine, &all, 1, MPIU_BOOL, MPI_LAND, m->lat->comm));
+  if (!all) PetscFunctionReturn(0);
+  PetscCall(VecEqual(u, m->f_last_u, &same));
+  if (!same) PetscFunctionReturn(0);
+  PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
+  PetscCall(VecCopy(m->f_last, F));
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  PetscCall(VecGetArray(F, &f));
+  PDModelForceChangeLocal(m, ul, m->nfchange, m->fchange_bond, m->fchange_g, f);
+  PetscCall(VecRestoreArray(F, &f));
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  PetscCall(PetscLogEventEnd(PD_LOG.force, 0, 0, 0, 0));
+  m->forces_by_change++;
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod) {
+  PetscScalar v;
+  PetscBool   done = PETSC_FALSE;
+
+  PetscFunctionBeginUser;
+  if (m->keep_force) PetscCall(InternalForceByChange(m, u, m->f_work, &done)); /* decided alike on every rank */
+  if (!done) PetscCall(PDModelInternalForce(m, u, m->f_work));
   if (m->scene->region[m->scene->load_regions[0]].kind == PD_REGION_FORCE)
     *load = m->lambda * m->force_magnitude;
   else {

@@ -352,7 +352,10 @@ static PetscErrorCode ImplexExtrapolate(Arc *a, PetscReal r) {
 
 /* The error of an IMPL-EX step that reached u: the largest difference between the damage of the real
    history, max(kappa_n, s(u)), and of the extrapolated one the step used (the softening laws lose most of
-   their force just past s0, so a difference in stretch would say little). */
+   their force just past s0, so a difference in stretch would say little). Where the model keeps the last
+   residual's force (m->keep_force), the bonds whose force the real history changes are noted with their
+   force on the step's secant, so that the accepted step's measurement updates only theirs: a bond whose
+   two histories are equal, or both below its material's onset (elastic either way), keeps its force. */
 static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
   PDModel           *m    = a->m;
   PetscReal          mine = 0, dd;
@@ -361,6 +364,8 @@ static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
 
   PetscFunctionBeginUser;
   PetscCall(PDModelScatterToLocal(m, a->u, &ul, &uloc));
+  m->nfchange = 0;
+  m->branch   = a->branch; /* the step's secants, for the noted forces */
   for (PetscInt e0 = 0; e0 < m->bonds->nbonds; e0 += PD_STRETCH_BLOCK) {
     const PetscInt n = PetscMin(PD_STRETCH_BLOCK, m->bonds->nbonds - e0);
     PetscReal      s[PD_STRETCH_BLOCK];
@@ -370,12 +375,15 @@ static PetscErrorCode ImplexError(Arc *a, PetscReal *err) {
       const PDLaw    *law = &m->law[m->bonds->material[e]];
       const PetscReal kr  = PetscMax(a->kx_n[e], s[k]);
       if (law->kind == PD_LAW_ELASTIC || kr == m->kappa[e]) continue;
+      if (m->keep_force && PetscMax(kr, m->kappa[e]) >= m->onset[m->bonds->material[e]]) PetscCall(PDModelNoteForceChange(m, ul, e));
       {
         const PDLawBond t = PDModelBondThresholds(m, e, law);
         mine              = PetscMax(mine, PetscAbsReal(PDLawDamage(law, &t, kr, &dd) - PDLawDamage(law, &t, m->kappa[e], &dd)));
       }
     }
   }
+  m->branch        = NULL;
+  m->fchange_ready = m->keep_force;
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(&mine, err, 1, MPIU_REAL, MPIU_MAX, m->lat->comm));
   PetscFunctionReturn(0);
@@ -766,6 +774,14 @@ static PetscErrorCode StartImplex(Arc *a, PetscReal tol, PetscBool have_prev) {
     a->kx_n[e]                  = m->kappa[e];
     if (!have_prev) a->kx_prev[e] = m->kappa[e];
   }
+  /* an accepted step's force with the real history: the last residual's, updated at the bonds ImplexError
+     notes, where the commit changes nothing else (no bar segments, bond slip or crushing's threshold rise) */
+  {
+    const PetscBool mine = m->scene->kinematics == PD_KINEMATICS_SMALL && !m->bonds->nseg_global && !m->nslip && !m->shift && !m->dilatation
+                               ? PETSC_TRUE
+                               : PETSC_FALSE;
+    PetscCall(MPIU_Allreduce(&mine, &m->keep_force, 1, MPIU_BOOL, MPI_LAND, m->lat->comm)); /* decided alike on every rank */
+  }
   PetscFunctionReturn(0);
 }
 
@@ -1030,6 +1046,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
   }
   PetscCall(PDPathDestroy(&path));
   m->ka_with_residual = m->ka_at_residual = PETSC_FALSE;
+  m->keep_force = m->fchange_ready = m->f_last_valid = PETSC_FALSE;
   PetscCall(PetscFree(a.branch));
   PetscCall(PetscFree(a.kx_n));
   PetscCall(PetscFree(a.kx_prev));
