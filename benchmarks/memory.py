@@ -19,7 +19,8 @@ PATH = ["-pd_control", "arclength", "-pd_stop_fraction", "0.1", "-pd_arclength_i
 # label -> extra options. The Krylov bases of path following: the direction's solve and the augmented
 # corrector's, both FGMRES(60), whose basis grows with the iterations a solve reaches; the preconditioning
 # matrix's reach (docs/solvers.md), whose matrix and GAMG set-up scale with its bonds; GAMG's Galerkin
-# products on two ranks, all at once by default (src/solve/static.c), against the algorithm PETSc itself
+# products on two ranks, all at once by default when this was measured (src/solve/static.c; now from 100,000
+# nodes), against the algorithm PETSc itself
 # picks for this matrix, which keeps intermediate products for reuse; GAMG's prolongators without their smoothing
 # (no product of the matrix with them, sparser coarse levels); checkpoints as the size-effect study
 # writes them, whose per-bond datasets are written while the solver's structures are alive
@@ -52,7 +53,10 @@ def report(res):
              "Written by `benchmarks/memory.py` from `memory.json`: the D = 200 mm half-notched Gregoire beam (3D, dx = 5 mm) "
              "under its default path following (IMPL-EX, damage error 0.03 per step), traced to 10 % of its peak, each "
              "configuration one run after the other in one invocation. Memory is the peak resident set summed over the "
-             "ranks, over the bonds; the curve difference is the RMS load difference to the default run over its peak.", "",
+             "ranks, over the bonds; the curve difference is the RMS load difference to the default run over its peak. "
+             "Row `default` was measured when GAMG's Galerkin products ran all at once on several ranks at every size; since "
+             "design point 68 (docs/design.md) a model of this size takes the row-merged product, the algorithm of row "
+             "`Galerkin products kept for reuse`, and all at once is kept from 100,000 nodes.", "",
              "| configuration | ranks | nodes | bonds | peak memory (MB) | bytes per bond | wall (s) | CPU (s; - under mpiexec) | steps / Newton / Krylov | "
              "peak (N) | vs default: peak | curve | status |", "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for label in CONFIGS:

@@ -21,7 +21,8 @@
    as long as the row-merged one (`nonscalable`, whose intermediates are as large as the default's). Below
    PD_GALERKIN_LEAN_NODES nodes, where those intermediates take a few hundred megabytes, the faster product
    is taken; from there on, where memory limits what a machine can run, the leaner one (docs/solvers.md,
-   "The Galerkin product"). A choice on the command line stands; one rank has no such algorithm and needs none. */
+   "What a second rank adds, and GAMG's Galerkin products"). A choice on the command line stands; one rank has no such algorithm and needs
+   none. */
 #define PD_GALERKIN_LEAN_NODES 100000
 static PetscErrorCode ChooseGalerkinProduct(MPI_Comm comm, PetscInt nodes) {
   PetscMPIInt size;
