@@ -632,9 +632,6 @@ PetscErrorCode PDModelApplyBoundaryValues(PDModel *m, PetscReal lambda, Vec u) {
   PetscFunctionReturn(0);
 }
 
-/* Curve quantities: load (applied force, or reaction of a displacement region along its direction),
-   mean displacement of the displacement region along the load direction, and the CMOD gauge. Leaves the
-   internal force f_int(u) in m->f_work for the drivers' external-work sums. */
 /* Bond e's force over its length at u (local) before the history commit, for PDModelMeasure. */
 PetscErrorCode PDModelNoteForceChange(PDModel *m, const PetscScalar *u, PetscInt e) {
   PetscReal xi[3];
@@ -691,6 +688,10 @@ static PetscErrorCode InternalForceByChange(PDModel *m, Vec u, Vec F, PetscBool 
   PetscFunctionReturn(0);
 }
 
+/* Curve quantities: load (applied force, or reaction of a displacement region along its direction),
+   mean displacement of the displacement region along the load direction, and the CMOD gauge. Leaves the
+   internal force f_int(u) in m->f_work for the drivers' external-work sums; after an IMPL-EX step's
+   commit that force comes from the last residual's and the bonds the commit changes (InternalForceByChange). */
 PetscErrorCode PDModelMeasure(PDModel *m, Vec u, PetscReal *load, PetscReal *disp, PetscReal *cmod) {
   PetscScalar v;
   PetscBool   done = PETSC_FALSE;

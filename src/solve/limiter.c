@@ -217,8 +217,8 @@ PetscErrorCode PDModelCountDamage(PDModel *m) {
    model without bar segments and crushing sums in the same loop over the stretches. With change, also the
    end-slope term du . (K(u0) - K(u)) du of the step from u0 (at load factor lambda0) to u, both tangents
    with the history before the commit (PDModelTangentChange, small kinematics), which is the one committed
-   at u0; a softening model takes it in the same loop, from the stretches at u the commit reads. The tangent scalars kept from the last
-   residual belong to the history before: they are not reused. */
+   at u0; a softening model takes it in the same loop, from the stretches at u the commit reads. The
+   tangent scalars kept from the last residual belong to the history before: they are not reused. */
 PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2], Vec u0, PetscReal lambda0, PetscReal *change) {
   const PDBonds     *bd       = m->bonds;
   const PetscBool    fuse     = energy && m->softening && !bd->nseg_global && !m->shift ? PETSC_TRUE : PETSC_FALSE;
