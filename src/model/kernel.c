@@ -13,6 +13,18 @@ static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDL
   return kap >= *cap ? *cap * (1 - 1e-12) : kap;
 }
 
+/* Whether bond e's concrete is elastic at stretch s with the history it has, before its own thresholds are
+   needed: no softening; compression without bond-slip links, which needs no law (most bonds of a loaded body);
+   an elastic law; or stretch and history below every threshold of its material (PDModel onset). */
+static inline PetscBool ConcreteElastic(const PDModel *m, PetscInt e, PetscReal s) {
+  const PDLaw *law;
+  PetscReal    a;
+  if (!m->softening || (s < 0 && !m->nslip)) return PETSC_TRUE;
+  law = &m->law[m->bonds->material[e]];
+  a   = PDLawHistoryStretch(law, s);
+  return a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]] ? PETSC_TRUE : PETSC_FALSE;
+}
+
 /* Scalar force g(s) of a bond's concrete and its slope. History kappa_n and the level the limiter allows
    give the effective largest stretch; a bond held below a threshold stays on its current branch.
    Compression is linear elastic whatever the damage (cracks do not interpenetrate). A bar's bond-slip link
@@ -23,20 +35,13 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
   const PDLaw    *law;
   PetscReal       kap, cap, d, dd, a;
 
-  /* compression without bond-slip links needs no law: most bonds of a loaded body take this way */
-  if (!m->softening || (s < 0 && !m->nslip)) {
+  if (ConcreteElastic(m, e, s)) {
     *g  = c * s;
     *gp = c;
     return;
   }
   law = &m->law[m->bonds->material[e]];
   a   = PDLawHistoryStretch(law, s);
-  /* below every threshold of its material (PDModel onset): elastic, its own thresholds unneeded */
-  if (a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]]) {
-    *g  = c * s;
-    *gp = c;
-    return;
-  }
   {
     const PDLawBond tb = PDModelBondThresholds(m, e, law), *t = &tb;
     PetscBool       loading = a >= m->kappa[e] ? PETSC_TRUE : PETSC_FALSE;
@@ -558,16 +563,10 @@ void PDModelBondStretches(const PDModel *m, const PetscScalar *u, PetscInt e0, P
     if (m->law[bd->material[e0 + k]].kind == PD_LAW_SLIP) s[k] = PetscAbsReal(s[k]);
 }
 
-/* Whether bond e's slope is c at stretch s with the history it has: ConcreteForce's elastic branches before
-   the bond's own thresholds are needed, and no bar segment. */
+/* Whether bond e's slope is c at stretch s with the history it has: its concrete elastic before its own
+   thresholds are needed (ConcreteElastic), and no bar segment. */
 static inline PetscBool SlopeElastic(const PDModel *m, PetscInt e, PetscReal s) {
-  const PDLaw *law;
-  PetscReal    a;
-  if (m->bonds->seg && m->bonds->seg[e] >= 0) return PETSC_FALSE;
-  if (!m->softening || (s < 0 && !m->nslip)) return PETSC_TRUE;
-  law = &m->law[m->bonds->material[e]];
-  a   = PDLawHistoryStretch(law, s);
-  return a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]] ? PETSC_TRUE : PETSC_FALSE;
+  return (!m->bonds->seg || m->bonds->seg[e] < 0) && ConcreteElastic(m, e, s) ? PETSC_TRUE : PETSC_FALSE;
 }
 
 /* Small kinematics: adds to *sum, bond by bond in bond order, the part of du . (K(u0) - K(u1)) du, du = u1 - u0,
