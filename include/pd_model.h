@@ -37,13 +37,12 @@ typedef struct {
   PetscInt  nchanged;         /* their count; -1: too many to be worth it */
   PetscInt  changed_cap;
   Vec       r_last; /* the last residual, at ka_u and ka_lambda */
-  /* path following under IMPL-EX: the internal force of the last residual's whole loop (at f_last_u and
-     f_last_lambda), and the bonds whose force an accepted step's history commit changes, with their force
+  /* path following under IMPL-EX: the internal force of the last residual's whole loop (at ka_u and
+     ka_lambda), and the bonds whose force an accepted step's history commit changes, with their force
      (over the bond's length) before it, so that PDModelMeasure updates that force bond by bond */
-  PetscBool       keep_force; /* set by the driver: keep f_last */
+  PetscBool       keep_force; /* set by the driver (with ka_with_residual): keep f_last */
   PetscBool       f_last_valid;
-  Vec             f_last, f_last_u;
-  PetscReal       f_last_lambda;
+  Vec             f_last;
   PetscBool       fchange_ready; /* fchange_bond lists the bonds whose force changes since f_last */
   PetscInt       *fchange_bond, nfchange, fchange_cap;
   PetscReal      *fchange_g;

@@ -432,6 +432,7 @@ static PetscErrorCode ForceByChange(const char *extra, PetscReal *diff, PetscInt
   PDLattice          lat;
   PDBonds            bd;
   PDModel            m;
+  Mat                J, P;
   Vec                u, f, loc;
   PetscRandom        rnd;
   const PetscScalar *ul;
@@ -440,6 +441,7 @@ static PetscErrorCode ForceByChange(const char *extra, PetscReal *diff, PetscInt
 
   PetscFunctionBeginUser;
   PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
+  PetscCall(PDModelCreateOperators(&m, &J, &P)); /* allocates the tangent scalars the residual's loop keeps */
   PetscCall(VecDuplicate(m.f_ref, &u));
   PetscCall(VecDuplicate(u, &f));
   PetscCall(RandomCreate(17, &rnd));
@@ -462,8 +464,9 @@ static PetscErrorCode ForceByChange(const char *extra, PetscReal *diff, PetscInt
   }
   PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
   /* the step's last residual on its secants, then the noting as ImplexError does it */
-  m.branch     = branch;
-  m.keep_force = PETSC_TRUE;
+  m.branch           = branch;
+  m.keep_force       = PETSC_TRUE;
+  m.ka_with_residual = PETSC_TRUE; /* as path following keeps them: the kept force's displacement is theirs */
   PetscCall(PDModelInternalForceKeepTangent(&m, u, f));
   PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
   m.nfchange = 0;
@@ -488,7 +491,8 @@ static PetscErrorCode ForceByChange(const char *extra, PetscReal *diff, PetscInt
   PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&f));
-  m.keep_force = PETSC_FALSE;
+  m.keep_force = m.ka_with_residual = PETSC_FALSE;
+  PetscCall(PDModelDestroyOperators(&J, &P));
   PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
   PetscFunctionReturn(0);
 }

@@ -113,3 +113,5 @@ PetscErrorCode PDModelGetProductInput(PDModel *, Vec x, PetscBool eliminate, Pet
 PetscErrorCode PDModelRestoreProductInput(PDModel *, PetscScalar **xl, Vec *xloc);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);
 PetscErrorCode PDModelRestoreLocal(PDModel *, const PetscScalar **ul, Vec *loc);
+PetscErrorCode PDModelScatterSecondToLocal(PDModel *, Vec u, PetscReal lambda, const PetscScalar **ul, Vec *loc);
+PetscErrorCode PDModelRestoreSecondLocal(PDModel *, const PetscScalar **ul, Vec *loc);

@@ -373,8 +373,8 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(VecDestroy(&m->ka_u)); /* left by a static run that stopped on an error */
   PetscCall(VecDestroy(&m->r_last));
   PetscCall(VecDestroy(&m->f_last));
-  PetscCall(VecDestroy(&m->f_last_u));
-  PetscCall(PetscFree2(m->fchange_bond, m->fchange_g));
+  PetscCall(PetscFree(m->fchange_bond));
+  PetscCall(PetscFree(m->fchange_g));
   PetscCall(PetscFree(m->changed));
   PetscCall(PDModelRowIndexDestroy(m));
   PetscCall(PetscFree(m->kb));
@@ -386,22 +386,46 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscFunctionReturn(0);
 }
 
+/* u with its ghost entries in the ghosted vector g, constrained entries at lambda times their reference
+   values; *ul is the local form's array. */
+static PetscErrorCode ScatterGhosted(PDModel *m, Vec u, PetscReal lambda, Vec g, const PetscScalar **ul, Vec *loc) {
+  PetscScalar *w;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecCopy(u, g));
+  PetscCall(VecGhostUpdateBegin(g, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostUpdateEnd(g, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecGhostGetLocalForm(g, loc));
+  PetscCall(VecGetArray(*loc, &w));
+  for (PetscInt k = 0; k < m->bs * m->lat->nlocal; k++)
+    if (m->fixed_local[k]) w[k] = lambda * m->uref_local[k];
+  PetscCall(VecRestoreArray(*loc, &w));
+  PetscCall(VecGetArrayRead(*loc, ul));
+  PetscFunctionReturn(0);
+}
+
 /* Copies the owned displacement into the ghosted work vector and fetches the ghosts. Constrained
    dofs take their prescribed values whatever u holds (lifting), so the internal force of free dofs
    does not depend on constrained ones: the Jacobian with eliminated columns is then exact. */
 PetscErrorCode PDModelScatterToLocal(PDModel *m, Vec u, const PetscScalar **ul, Vec *loc) {
-  PetscScalar *w;
-
   PetscFunctionBeginUser;
-  PetscCall(VecCopy(u, m->u_local));
-  PetscCall(VecGhostUpdateBegin(m->u_local, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostUpdateEnd(m->u_local, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGhostGetLocalForm(m->u_local, loc));
-  PetscCall(VecGetArray(*loc, &w));
-  for (PetscInt k = 0; k < m->bs * m->lat->nlocal; k++)
-    if (m->fixed_local[k]) w[k] = m->lambda * m->uref_local[k];
-  PetscCall(VecRestoreArray(*loc, &w));
-  PetscCall(VecGetArrayRead(*loc, ul));
+  PetscCall(ScatterGhosted(m, u, m->lambda, m->u_local, ul, loc));
+  PetscFunctionReturn(0);
+}
+
+/* The same for a second state at load factor lambda, in the work vector x_local (a tangent product's input),
+   undone by PDModelRestoreSecondLocal. */
+PetscErrorCode PDModelScatterSecondToLocal(PDModel *m, Vec u, PetscReal lambda, const PetscScalar **ul, Vec *loc) {
+  PetscFunctionBeginUser;
+  if (!m->x_local) PetscCall(VecDuplicate(m->u_local, &m->x_local));
+  PetscCall(ScatterGhosted(m, u, lambda, m->x_local, ul, loc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode PDModelRestoreSecondLocal(PDModel *m, const PetscScalar **ul, Vec *loc) {
+  PetscFunctionBeginUser;
+  PetscCall(VecRestoreArrayRead(*loc, ul));
+  PetscCall(VecGhostRestoreLocalForm(m->x_local, loc));
   PetscFunctionReturn(0);
 }
 
@@ -459,13 +483,10 @@ PetscErrorCode PDModelInternalForceKeepTangent(PDModel *m, Vec u, Vec F) {
   PetscCall(InternalForce(m, u, F, m->ka_with_residual));
   m->fchange_ready = PETSC_FALSE; /* a list of changed forces refers to the force before */
   m->f_last_valid  = PETSC_FALSE;
-  if (m->keep_force) { /* for PDModelMeasure after the history commit (InternalForceByChange) */
+  if (m->keep_force) { /* for PDModelMeasure after the history commit (InternalForceByChange), at ka_u and ka_lambda */
     if (!m->f_last) PetscCall(VecDuplicate(F, &m->f_last));
-    if (!m->f_last_u) PetscCall(VecDuplicate(u, &m->f_last_u));
     PetscCall(VecCopy(F, m->f_last));
-    PetscCall(VecCopy(u, m->f_last_u));
-    m->f_last_lambda = m->lambda;
-    m->f_last_valid  = PETSC_TRUE;
+    m->f_last_valid = PETSC_TRUE;
   }
   if (m->ka_with_residual) {
     if (!m->ka_u) PetscCall(VecDuplicate(u, &m->ka_u));
@@ -539,10 +560,9 @@ PetscErrorCode PDModelResidual(SNES snes, Vec u, Vec R, void *ctx) {
   (void)snes;
   PetscCall(PetscTime(&t0));
   if (m->rows_after_grant && m->ka_with_residual) PetscCall(ResidualRowsAfterGrant(m, u, R, &rows));
-  m->nchanged      = 0;
-  m->fchange_ready = PETSC_FALSE; /* a list of changed forces refers to the residual before */
-  m->f_last_valid  = PETSC_FALSE;
+  m->nchanged = 0;
   if (rows) {
+    m->fchange_ready = m->f_last_valid = PETSC_FALSE; /* the kept force is the one before the grant */
     m->residuals_by_rows++;
     PetscCall(PetscTime(&t1));
     m->t_residual += t1 - t0;
@@ -638,20 +658,14 @@ PetscErrorCode PDModelNoteForceChange(PDModel *m, const PetscScalar *u, PetscInt
 
   PetscFunctionBeginUser;
   if (m->nfchange < 0) PetscFunctionReturn(0);
-  if (m->nfchange == m->fchange_cap) {
-    PetscInt  *b;
-    PetscReal *g;
+  if (m->nfchange == m->fchange_cap) {            /* grown as the limiter's record of changed bonds is (limiter.c Raise) */
     if (m->fchange_cap >= m->bonds->nbonds / 8) { /* beyond that the whole loop costs about as much */
       m->nfchange = -1;
       PetscFunctionReturn(0);
     }
     m->fchange_cap = PetscMax(256, 2 * m->fchange_cap);
-    PetscCall(PetscMalloc2(m->fchange_cap, &b, m->fchange_cap, &g));
-    PetscCall(PetscArraycpy(b, m->fchange_bond, m->nfchange));
-    PetscCall(PetscArraycpy(g, m->fchange_g, m->nfchange));
-    PetscCall(PetscFree2(m->fchange_bond, m->fchange_g));
-    m->fchange_bond = b;
-    m->fchange_g    = g;
+    PetscCall(PetscRealloc(sizeof(PetscInt) * m->fchange_cap, &m->fchange_bond));
+    PetscCall(PetscRealloc(sizeof(PetscReal) * m->fchange_cap, &m->fchange_g));
   }
   m->fchange_bond[m->nfchange] = e;
   m->fchange_g[m->nfchange++]  = PDModelBondForceSmall(m, u, e, xi);
@@ -669,11 +683,11 @@ static PetscErrorCode InternalForceByChange(PDModel *m, Vec u, Vec F, PetscBool 
 
   PetscFunctionBeginUser;
   *done            = PETSC_FALSE;
-  mine             = m->fchange_ready && m->nfchange >= 0 && m->f_last_valid && m->lambda == m->f_last_lambda ? PETSC_TRUE : PETSC_FALSE;
+  mine             = m->fchange_ready && m->nfchange >= 0 && m->f_last_valid && m->lambda == m->ka_lambda ? PETSC_TRUE : PETSC_FALSE;
   m->fchange_ready = PETSC_FALSE;
   PetscCall(MPIU_Allreduce(&mine, &all, 1, MPIU_BOOL, MPI_LAND, m->lat->comm));
   if (!all) PetscFunctionReturn(0);
-  PetscCall(VecEqual(u, m->f_last_u, &same));
+  PetscCall(VecEqual(u, m->ka_u, &same));
   if (!same) PetscFunctionReturn(0);
   PetscCall(PetscLogEventBegin(PD_LOG.force, 0, 0, 0, 0));
   PetscCall(VecCopy(m->f_last, F));

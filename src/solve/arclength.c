@@ -775,9 +775,11 @@ static PetscErrorCode StartImplex(Arc *a, PetscReal tol, PetscBool have_prev) {
     if (!have_prev) a->kx_prev[e] = m->kappa[e];
   }
   /* an accepted step's force with the real history: the last residual's, updated at the bonds ImplexError
-     notes, where the commit changes nothing else (no bar segments, bond slip or crushing's threshold rise) */
+     notes, where the commit changes nothing else (no bar segments, bond slip or crushing's threshold rise);
+     the residual's displacement and load factor are those its tangent scalars keep (ka_u, ka_lambda) */
   {
-    const PetscBool mine = m->scene->kinematics == PD_KINEMATICS_SMALL && !m->bonds->nseg_global && !m->nslip && !m->shift && !m->dilatation
+    const PetscBool mine = m->ka_with_residual && m->scene->kinematics == PD_KINEMATICS_SMALL && !m->bonds->nseg_global && !m->nslip &&
+                                   !m->shift && !m->dilatation
                                ? PETSC_TRUE
                                : PETSC_FALSE;
     PetscCall(MPIU_Allreduce(&mine, &m->keep_force, 1, MPIU_BOOL, MPI_LAND, m->lat->comm)); /* decided alike on every rank */

@@ -226,7 +226,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2], Vec 
   PetscInt64         count[3] = {0, 0, 0};
   PetscReal          local[2] = {0, 0}, csum = 0;
   const PetscScalar *ul;
-  PetscScalar       *u0l = NULL;
+  const PetscScalar *u0l = NULL;
   Vec                uloc, u0loc;
 
   PetscFunctionBeginUser;
@@ -244,12 +244,10 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2], Vec 
   }
   PetscCall(PetscLogEventBegin(PD_LOG.history, 0, 0, 0, 0));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
-  if (fuse_c) { /* u0 with its ghosts and its constrained values, as PDModelScatterToLocal gives u */
+  if (fuse_c) {
     PetscCheck(m->scene->kinematics == PD_KINEMATICS_SMALL, m->lat->comm, PETSC_ERR_SUP,
                "the tangent's change by bonds needs small kinematics");
-    PetscCall(PDModelGetProductInput(m, u0, PETSC_FALSE, &u0l, &u0loc));
-    for (PetscInt k = 0; k < m->bs * m->lat->nlocal; k++)
-      if (m->fixed_local[k]) u0l[k] = lambda0 * m->uref_local[k];
+    PetscCall(PDModelScatterSecondToLocal(m, u0, lambda0, &u0l, &u0loc));
   }
   if (m->dilatation) PetscCall(PDModelNodalDilatation(m, ul)); /* the strain state, from the same local values */
   for (PetscInt e0 = 0; m->softening && e0 < bd->nbonds; e0 += PD_STRETCH_BLOCK) {
@@ -266,7 +264,7 @@ PetscErrorCode PDModelCommitHistory(PDModel *m, Vec u, PetscReal energy[2], Vec 
     }
     if (fuse) PDModelBondEnergies(m, e0, n, s, &local[0], &local[1]);
   }
-  if (fuse_c) PetscCall(PDModelRestoreProductInput(m, &u0l, &u0loc));
+  if (fuse_c) PetscCall(PDModelRestoreSecondLocal(m, &u0l, &u0loc));
   for (PetscInt sg = 0; sg < bd->nseg; sg++) PDModelCommitSegment(m, sg, PDModelBondStretch(m, ul, bd->seg_bond[sg]));
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(PDModelConfine(m));
