@@ -50,6 +50,9 @@ typedef struct {
   PetscReal dt_stable, dt;      /* stable step 2/sqrt(eig_est) and step used (s) */
   PetscReal dt_eq46;            /* the estimate of THEORY.md Eq. 4.6 (s) */
   PetscReal bar_mass_added;     /* explicit: mass added to bar nodes by -pd_bar_mass_scaling (kg) */
+  PetscReal servo_gain;         /* explicit under CMOD control: the gauge's static opening per unit load factor (m) */
+  PetscReal servo_omega1;       /* explicit under CMOD control: fundamental circular frequency estimate (1/s) */
+  PetscInt  servo_its;          /* explicit under CMOD control: CG iterations of the static solve */
   PetscInt  time_steps;
   PetscReal ke_max;  /* largest kinetic energy at a recorded step (J) */
   PetscReal v_peak;  /* largest nodal velocity (m/s) */

@@ -213,13 +213,15 @@ typedef struct {
   PetscBool        pc_aij;      /* the preconditioner or factorisation package chosen cannot read symmetric block storage */
   /* explicit path (-pd_mode explicit) */
   PetscBool explicit_mode;
-  PetscReal ramp_time;    /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */
-  PetscReal hold_time;    /* time after the ramp, at lambda_max (s) */
-  PetscReal dt_safety;    /* fraction of the stable time step */
-  PetscInt  dt_power_its; /* power iterations for the largest eigenvalue of M^-1 K */
-  PetscReal damping;      /* local damping C (kg/(m^3 s)) */
-  PetscBool adr;          /* adaptive dynamic relaxation: fictitious masses, unit steps, adaptive damping */
-  PetscInt  out_stride;   /* time steps between curve rows; 0: about 400 rows */
+  PetscReal ramp_time;       /* smoothstep ramp of the load factor from 0 to lambda_max (s); 0: 20,000 steps */
+  PetscReal hold_time;       /* time after the ramp, at lambda_max (s) */
+  PetscReal explicit_cmod;   /* CMOD control: the gauge's opening at the end of the ramp (m); 0: the load factor is ramped */
+  PetscReal servo_bandwidth; /* CMOD control: the servo's frequency over the body's fundamental one */
+  PetscReal dt_safety;       /* fraction of the stable time step */
+  PetscInt  dt_power_its;    /* power iterations for the largest eigenvalue of M^-1 K */
+  PetscReal damping;         /* local damping C (kg/(m^3 s)) */
+  PetscBool adr;             /* adaptive dynamic relaxation: fictitious masses, unit steps, adaptive damping */
+  PetscInt  out_stride;      /* time steps between curve rows; 0: about 400 rows */
   /* failure search (-pd_failure_search): explicit trials held at constant loads, geometric bisection */
   PetscBool          failure_search;
   PDFailureCriterion failure_criterion;

@@ -169,6 +169,8 @@ static PetscErrorCode ReadExplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscFunctionBeginUser;
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_ramp_time", &sc->ramp_time, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_hold_time", &sc->hold_time, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_explicit_cmod", &sc->explicit_cmod, NULL));
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_servo_bandwidth", &sc->servo_bandwidth, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_dt_safety", &sc->dt_safety, NULL));
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_dt_power_its", &sc->dt_power_its, NULL));
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_damping", &sc->damping, NULL));
@@ -177,6 +179,10 @@ static PetscErrorCode ReadExplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_bar_mass_scaling", &sc->bar_mass_scaling, NULL));
   PetscCheck(!(sc->adr && sc->damping > 0), comm, PETSC_ERR_USER_INPUT, "Option -pd_adr: sets its own damping; drop -pd_damping %g",
              (double)sc->damping);
+  PetscCheck(sc->explicit_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_explicit_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
+  PetscCheck(!(sc->adr && sc->explicit_cmod > 0), comm, PETSC_ERR_USER_INPUT,
+             "Option -pd_explicit_cmod: dynamic relaxation (-pd_adr) counts time in steps and has no servo; drop one of them");
   PetscCall(PDOptionInt(PetscOptionsObject, sc, "-pd_output_stride", &sc->out_stride, NULL));
   PetscFunctionReturn(0);
 }

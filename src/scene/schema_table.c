@@ -711,6 +711,22 @@ const PDOptionSpec PDOptionSchema[] = {
      .range = "[0, inf)",
      .when  = PD_WHEN_EXPLICIT,
      .help  = "Time held at full load after the ramp"},
+    {.name  = "-pd_explicit_cmod",
+     .type  = PD_OPTION_REAL,
+     .unit  = "m",
+     .def   = "0",
+     .range = "[0, inf)",
+     .when  = PD_WHEN_EXPLICIT,
+     .help  = "CMOD control: the CMOD gauge's opening follows the smoothstep ramp to this value over -pd_ramp_time, and a servo drives "
+              "the load factor after it, as a CMOD-controlled test's actuator (docs/explicit.md); needs -pd_cmod_points. 0: the load "
+              "factor is ramped to -pd_lambda_max"},
+    {.name  = "-pd_servo_bandwidth",
+     .type  = PD_OPTION_REAL,
+     .def   = "0.05",
+     .range = "(0, 1]",
+     .when  = PD_WHEN_EXPLICIT,
+     .help  = "Under -pd_explicit_cmod: the servo's frequency over the body's fundamental frequency (Rayleigh quotient of the static "
+              "elastic deflection)"},
     {.name  = "-pd_dt_safety",
      .type  = PD_OPTION_REAL,
      .def   = "0.9",

@@ -9,9 +9,13 @@
 #include "explicit.h"
 #include "../model/kernel.h"
 
-/* Smoothstep load factor and its second derivative at time t. */
+/* Load factor and its second derivative at time t: the smoothstep ramp, or the servo's under CMOD control. */
 static void Ramp(const PDExplicit *c, PetscReal t, PetscReal *lam, PetscReal *lam_tt) {
   const PetscReal L = c->lambda_max, T = c->t_ramp, g = PetscMin(t / T, 1);
+  if (c->servo.on) {
+    PDServoAt(&c->servo, t, lam, lam_tt);
+    return;
+  }
   *lam    = L * g * g * g * (10 - 15 * g + 6 * g * g);
   *lam_tt = t < T ? L / (T * T) * (60 * g - 180 * g * g + 120 * g * g * g) : 0;
 }
@@ -328,6 +332,7 @@ static PetscErrorCode PostStep(TS ts) {
   }
   PetscCall(VecGetSubVector(X, c->is_u, &u));
   PetscCall(AddExternalWork(c, u));
+  if (c->servo.on) PetscCall(PDServoUpdate(&c->servo, m, t, u));
   if (m->shift && step % PD_CHECK_EVERY == 0) { /* crushing: thresholds follow the compression, every tenth step like the check above */
     PetscCall(PDModelStrainState(m, u));
     PetscCall(PDModelConfine(m));
@@ -516,6 +521,17 @@ PetscErrorCode PDExplicitCreate(PDModel *m, PDRecord *rec, PDExplicit *c) {
   else
     PetscCall(PetscPrintf(comm, "  explicit: step %.4g s (safety %g of the stable step), ramp %.4g s, %" PetscInt_FMT " steps\n",
                           (double)c->dt, (double)sc->dt_safety, (double)c->t_ramp, c->nsteps));
+  if (sc->explicit_cmod > 0) {
+    PetscCall(PDServoSetUp(m, c->mass, sc->explicit_cmod, c->t_ramp, &c->servo));
+    rec->servo_gain   = c->servo.gain;
+    rec->servo_omega1 = c->servo.omega1;
+    rec->servo_its    = c->servo.ksp_its;
+    PetscCall(PetscPrintf(comm,
+                          "  explicit: CMOD control to %g m, %g m of CMOD per unit load factor (static, %" PetscInt_FMT
+                          " CG iterations), fundamental frequency %.4g 1/s, servo at %.4g 1/s\n",
+                          (double)sc->explicit_cmod, (double)c->servo.gain, c->servo.ksp_its, (double)c->servo.omega1,
+                          (double)c->servo.omega));
+  }
   PetscCall(VecDuplicate(m->u_local, &c->v_local));
   PetscCall(VecCreateMPI(comm, 2 * n, PETSC_DETERMINE, &c->X));
   PetscCall(VecGetOwnershipRange(c->X, &rstart, NULL));
@@ -548,6 +564,7 @@ PetscErrorCode PDExplicitSolve(PDExplicit *c, PetscReal lambda_max) {
   c->lambda_max = lambda_max;
   c->ke_max = c->v_peak = c->ds_peak = c->w_ext = c->w_damp = 0;
   c->stopped = c->cmod_reached = c->crushed = c->blew_up = c->interrupted = PETSC_FALSE;
+  PDServoReset(&c->servo);
   if (m->softening) PetscCall(PetscArrayzero(m->kappa, m->bonds->nbonds));
   PDModelResetThresholds(m); /* a trial's rises under compression (-pd_fc) are history too */
   if (m->scene->nbars) {

@@ -4,6 +4,23 @@
 #include "pd_solve.h"
 #include <petscts.h>
 
+/* The servo that drives the load factor under CMOD control (servo.c, -pd_explicit_cmod). */
+typedef struct {
+  PetscBool on;
+  PetscReal target;                 /* the gauge's opening at the end of the ramp (m) */
+  PetscReal t_ramp;                 /* ramp duration (s) */
+  PetscReal gain;                   /* the gauge's opening per unit load factor, static elastic (m) */
+  PetscReal omega1;                 /* fundamental circular frequency, Rayleigh quotient of the static deflection (1/s) */
+  PetscReal omega;                  /* the servo's circular frequency (1/s) */
+  PetscInt  ksp_its;                /* CG iterations of the static solve */
+  PetscReal t0, lam, lam_t, lam_tt; /* load factor and its rate at t0; its acceleration, held over the step */
+} PDServo;
+
+PetscErrorCode PDServoSetUp(PDModel *, Vec mass, PetscReal target, PetscReal t_ramp, PDServo *);
+PetscErrorCode PDServoUpdate(PDServo *, const PDModel *, PetscReal t, Vec u);
+void           PDServoAt(const PDServo *, PetscReal t, PetscReal *lam, PetscReal *lam_tt);
+void           PDServoReset(PDServo *);
+
 typedef struct PDExplicit PDExplicit;
 /* Called every tenth time step with the velocities; setting *stop ends the integration. */
 typedef PetscErrorCode (*PDExplicitMonitor)(PDExplicit *, PetscInt step, PetscReal t, Vec v, PetscBool *stop);
@@ -43,6 +60,7 @@ struct PDExplicit {
   PetscBool         interrupted;  /* SIGTERM (interrupt.c) ended the integration at a recorded row */
   Vec               adr_r, adr_u; /* dynamic relaxation: out-of-balance force and displacement at the last evaluation */
   PetscReal         adr_c;        /* dynamic relaxation: damping coefficient of the step (1/step) */
+  PDServo           servo;        /* under -pd_explicit_cmod: what drives the load factor */
   TSConvergedReason reason;
   PDExplicitMonitor monitor;
   void             *monitor_ctx;
