@@ -26,6 +26,11 @@ CASES = [
     # explicit step counts past any integer, found from the stable step before anything is written
     ("cantilever", ["-pd_mode", "explicit", "-pd_ramp_time", "1e6"], "-pd_ramp_time"),
     ("cantilever", ["-pd_mode", "explicit", "-pd_dt_safety", "1e-9"], "-pd_dt_safety"),  # the default ramp, in tiny steps
+    # CMOD control of the explicit path needs a gauge, a positive opening and a servo slower than the body
+    ("cantilever", ["-pd_mode", "explicit", "-pd_explicit_cmod", "1e-4"], "-pd_explicit_cmod"),
+    ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_explicit_cmod", "-1e-4"], "-pd_explicit_cmod"),
+    ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_explicit_cmod", "1e-4", "-pd_adr", "true"], "-pd_explicit_cmod"),
+    ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_explicit_cmod", "1e-4", "-pd_servo_bandwidth", "2"], "-pd_servo_bandwidth"),
     ("cantilever", ["-pd_region1_force", "0,zero,-1e4"], "-pd_region1_force"),
     ("cantilever", ["-pd_region2_box", "-0.08,0,0,0,0.1,0.1", "-pd_region2_kind", "displacement", "-pd_region2_dofs", "z",
                     "-pd_region2_displacement", "0,0,1e-3"], "-pd_region2"),  # conflicts with the clamp

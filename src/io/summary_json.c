@@ -203,10 +203,12 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
         ", \"eigenvalue_gershgorin_per_s2\": %.10e, \"dt_stable_s\": %.10e, \"dt_gershgorin_s\": %.10e, \"dt_eq46_s\": %.10e, "
         "\"dt_safety\": %.10e, \"dt_s\": %.10e, \"time_steps\": %" PetscInt_FMT
         ", \"kinetic_energy_max_J\": %.6e, \"velocity_max_m_per_s\": %.6e, \"stretch_per_step_max\": %.6e, \"damping\": %.6e, "
-        "\"bar_mass_added_kg\": %.6e},\n",
+        "\"bar_mass_added_kg\": %.6e, \"control\": \"%s\", \"cmod_target_m\": %.6e, \"servo_gain_m\": %.10e, "
+        "\"servo_fundamental_per_s\": %.6e, \"servo_bandwidth\": %.6e, \"servo_cg_iterations\": %" PetscInt_FMT "},\n",
         (double)rec->eig_est, sc->dt_power_its, (double)rec->eig_bound, (double)rec->dt_stable, (double)(2 / PetscSqrtReal(rec->eig_bound)),
         (double)rec->dt_eq46, (double)sc->dt_safety, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)rec->v_peak,
-        (double)rec->ds_peak, (double)sc->damping, (double)rec->bar_mass_added));
+        (double)rec->ds_peak, (double)sc->damping, (double)rec->bar_mass_added, sc->explicit_cmod > 0 ? "cmod" : "load",
+        (double)sc->explicit_cmod, (double)rec->servo_gain, (double)rec->servo_omega1, (double)sc->servo_bandwidth, rec->servo_its));
   if (sc->failure_search) {
     PetscCall(PetscFPrintf(
         comm, fp, "  \"failure_search\": {\"criterion\": \"%s\", \"tolerance\": %.6e, \"lower_N\": %.6e, \"upper_N\": %.6e, \"trials\": [",
