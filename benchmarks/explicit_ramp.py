@@ -11,7 +11,11 @@ ratio's changes: once the shortest ramp is found, the implicit run and that expl
 turn (--repeat times in all), and the ratio is of their median CPU times. Writes
 docs/benchmarks/explicit_ramp.json and explicit_ramp.md.
 
-Usage: benchmarks/explicit_ramp.py [--dx 1e-2 5e-3] [--bisect 3] [--repeat 3] [--report]
+With --beam un --control cmod, the same search on the unnotched beam with the explicit path under CMOD
+control (-pd_explicit_cmod: the gauge's opening is ramped and a servo drives the load factor, as the
+experiments were run), the reference for beams whose static path snaps back under load-point control.
+
+Usage: benchmarks/explicit_ramp.py [--dx 1e-2 5e-3] [--beam hn|un] [--control load|cmod] [--bisect 3] [--repeat 3] [--report]
 """
 import argparse
 import csv
@@ -22,14 +26,24 @@ import tempfile
 
 from common import EXE, OUT, RESULTS_DIR, ROOT, load_results, run_timed, store_result
 
-SCENE = os.path.join(ROOT, "options", "gregoire_d50_hn.opts")
+BEAMS = {"hn": "half-notched", "un": "unnotched"}
+CMOD_TARGET = 2.1e-4  # under CMOD control: the gauge's ramp ends a little past the scenes' stop at 0.2 mm
 JSON = os.path.join(RESULTS_DIR, "explicit_ramp.json")
 TOL = 0.01  # equal accuracy: peak and RMS curve difference within 1 % of the implicit peak
 
 
-def run(dx, opts, timeout=3600):
+def scene(beam):
+    return os.path.join(ROOT, "options", "gregoire_d50_%s.opts" % beam)
+
+
+def key(dx, beam, control):
+    """The result's key: the half-notched beam under load-point control keeps the study's first keys."""
+    return "dx_%g" % dx if (beam, control) == ("hn", "load") else "%s %s dx_%g" % (beam, control, dx)
+
+
+def run(dx, opts, beam="hn", timeout=3600):
     out = tempfile.mkdtemp(prefix="explicit_ramp_")
-    cmd = [EXE, "-options_file", SCENE, "-pd_dx", repr(dx), "-pd_output_dir", out] + opts
+    cmd = [EXE, "-options_file", scene(beam), "-pd_dx", repr(dx), "-pd_output_dir", out] + opts
     with open(os.path.join(out, "log.txt"), "w") as log:
         code, wall, cpu, _ = run_timed(cmd, timeout, log)
     s = json.load(open(os.path.join(out, "summary.json")))
@@ -51,12 +65,13 @@ def difference(ref, r):
     return float(l.max() / peak - 1), float(np.sqrt(np.mean((np.interp(x, c, l) - np.interp(x, cr, lr)) ** 2)) / peak)
 
 
-def study(dx, nbisect, repeat):
-    implicit = run(dx, [])
+def study(dx, nbisect, repeat, beam="hn", control="load"):
+    implicit = run(dx, [], beam)
     runs = {}
+    servo = ["-pd_explicit_cmod", repr(CMOD_TARGET)] if control == "cmod" else []
 
     def explicit(ramp):
-        r = run(dx, ["-pd_mode", "explicit", "-pd_ramp_time", repr(ramp)])
+        r = run(dx, ["-pd_mode", "explicit", "-pd_ramp_time", repr(ramp)] + servo, beam)
         r["ramp_s"] = ramp
         r["peak_diff"], r["rms_diff"] = difference(implicit, r)
         r["passes"] = r["exit"] == 0 and abs(r["peak_diff"]) <= TOL and r["rms_diff"] <= TOL
@@ -105,24 +120,26 @@ def study(dx, nbisect, repeat):
     best = runs["%.6g" % hi]
     implicit["cpu_runs_s"], best["cpu_runs_s"] = [implicit["cpu_s"]], [best["cpu_s"]]
     for _ in range(repeat - 1):
-        implicit["cpu_runs_s"].append(run(dx, [])["cpu_s"])
-        best["cpu_runs_s"].append(run(dx, best["options"])["cpu_s"])
+        implicit["cpu_runs_s"].append(run(dx, [], beam)["cpu_s"])
+        best["cpu_runs_s"].append(run(dx, best["options"], beam)["cpu_s"])
     for r in runs.values():
         del r["curve"]
     del implicit["curve"]
-    return {"dx": dx, "implicit": implicit, "explicit": runs, "shortest_ramp_s": hi, "rms_limit": limit, "rms_tolerance": tol_rms,
+    return {"dx": dx, "beam": beam, "control": control, "implicit": implicit, "explicit": runs, "shortest_ramp_s": hi, "rms_limit": limit, "rms_tolerance": tol_rms,
             "peak_limit": limit_peak, "peak_tolerance": tol_peak}
 
 
 def report(res):
     lines = ["# A fair explicit reference: the shortest ramp within 1 % of the implicit curve", "",
-             "Written by `benchmarks/explicit_ramp.py` from `explicit_ramp.json`. Half-notched Gregoire beam",
-             "(`options/gregoire_d50_hn.opts`) to CMOD 0.2 mm, one rank. Explicit runs at the default step (0.9 of",
+             "Written by `benchmarks/explicit_ramp.py` from `explicit_ramp.json`. Gregoire D = 50 mm beams",
+             "(`options/gregoire_d50_{hn,un}.opts`) to CMOD 0.2 mm, one rank. Explicit runs at the default step (0.9 of",
              "2/sqrt(lambda_max)); a ramp passes when its peak and its RMS load difference over CMOD 0 to 0.2 mm are",
              "within 1 % of the implicit peak, or, where the explicit path's quasi-static limit (its longest ramp, which",
              "has no limiter and raises bond histories at every force evaluation) already differs by more, within 0.1 %",
-             "of that limit's difference. All runs of one spacing in one invocation; CPU time is each run's own.", ""]
-    for k in sorted(res, key=lambda k: -res[k]["dx"]):
+             "of that limit's difference. All runs of one spacing in one invocation; CPU time is each run's own.",
+             "Under load-point control the explicit path ramps the load factor; under CMOD control (`-pd_explicit_cmod %g`,"
+             % CMOD_TARGET, "docs/explicit.md) it ramps the CMOD gauge's opening, and a servo drives the load factor after it.", ""]
+    for k in sorted(res, key=lambda k: (res[k].get("beam", "hn") != "hn", -res[k]["dx"])):
         s = res[k]
         imp = s["implicit"]
         best = s["explicit"]["%.6g" % s["shortest_ramp_s"]]
@@ -130,7 +147,8 @@ def report(res):
         runs_note = (" Repeated in turn, %d runs each: implicit CPU %s s, explicit %s s; the ratio is of the medians." % (
             len(imp["cpu_runs_s"]), ", ".join("%.1f" % t for t in imp["cpu_runs_s"]), ", ".join("%.1f" % t for t in best["cpu_runs_s"]))
             if len(imp.get("cpu_runs_s", [])) > 1 else "")
-        lines += ["## dx = %g mm" % (1e3 * s["dx"]), "",
+        lines += ["## %s, %s control, dx = %g mm" % (BEAMS[s.get("beam", "hn")].capitalize(), {"load": "load-point", "cmod": "CMOD"}[
+                      s.get("control", "load")], 1e3 * s["dx"]), "",
                   "Implicit (default path): peak %.1f N, %s Newton / %s Krylov iterations, CPU %.1f s." % (
                       imp["peak_N"], imp["newton_its"], imp["ksp_its"], median(imp)),
                   "The explicit curve at the longest ramp tried (its quasi-static limit) differs by %.2f %% on the peak and %.2f %% RMS;"
@@ -150,6 +168,8 @@ def report(res):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--dx", type=float, nargs="+", default=[1e-2, 5e-3])
+    ap.add_argument("--beam", choices=list(BEAMS), default="hn")
+    ap.add_argument("--control", choices=["load", "cmod"], default="load", help="cmod: the explicit path under CMOD control")
     ap.add_argument("--bisect", type=int, default=3)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--report", action="store_true")
@@ -157,7 +177,7 @@ def main():
     res = load_results(JSON)
     if not a.report:
         for dx in a.dx:
-            res = store_result(JSON, "dx_%g" % dx, study(dx, a.bisect, a.repeat))
+            res = store_result(JSON, key(dx, a.beam, a.control), study(dx, a.bisect, a.repeat, a.beam, a.control))
     report(res)
 
 
