@@ -15,7 +15,12 @@ With --beam un --control cmod, the same search on the unnotched beam with the ex
 control (-pd_explicit_cmod: the gauge's opening is ramped and a servo drives the load factor, as the
 experiments were run), the reference for beams whose static path snaps back under load-point control.
 
-Usage: benchmarks/explicit_ramp.py [--dx 1e-2 5e-3] [--beam hn|un] [--control load|cmod] [--bisect 3] [--repeat 3] [--report]
+With --bandwidths B..., the unnotched beam under CMOD control at one ramp (50 ms) with each servo bandwidth
+(-pd_servo_bandwidth) against the implicit path by arc length on the CMOD, which traces the same control:
+how near the body's own frequency the servo may go.
+
+Usage: benchmarks/explicit_ramp.py [--dx 1e-2 5e-3] [--beam hn|un] [--control load|cmod] [--bisect 3] [--repeat 3]
+       [--bandwidths 0.02 0.05 0.1 ...] [--report]
 """
 import argparse
 import csv
@@ -129,6 +134,38 @@ def study(dx, nbisect, repeat, beam="hn", control="load"):
             "peak_limit": limit_peak, "peak_tolerance": tol_peak}
 
 
+BANDWIDTH_RAMP = 0.05
+
+
+def bandwidths(dx, values):
+    """The unnotched beam under CMOD control at BANDWIDTH_RAMP with each servo bandwidth, against arc length on the CMOD."""
+    implicit = run(dx, ["-pd_control", "arclength"], "un")
+    runs = {}
+    for b in values:
+        r = run(dx, ["-pd_mode", "explicit", "-pd_ramp_time", repr(BANDWIDTH_RAMP), "-pd_explicit_cmod", repr(CMOD_TARGET),
+                     "-pd_servo_bandwidth", repr(b)], "un")
+        r["bandwidth"] = b
+        r["peak_diff"], r["rms_diff"] = difference(implicit, r)
+        del r["curve"]
+        runs["%g" % b] = r
+        print("bandwidth %g: peak %+.2f %%, RMS %.2f %%" % (b, 100 * r["peak_diff"], 100 * r["rms_diff"]), flush=True)
+    del implicit["curve"]
+    return {"dx": dx, "ramp_s": BANDWIDTH_RAMP, "implicit": implicit, "explicit": runs}
+
+
+def report_bandwidths(b):
+    imp = b["implicit"]
+    lines = ["## The servo's bandwidth (unnotched, CMOD control, dx = %g mm, %g ms ramp)" % (1e3 * b["dx"], 1e3 * b["ramp_s"]), "",
+             "Against the implicit path by arc length on the CMOD (`-pd_control arclength`): peak %.1f N, CPU %.1f s. Bandwidth:"
+             " the servo's frequency over the body's fundamental one (`-pd_servo_bandwidth`; docs/explicit.md)." % (imp["peak_N"], imp["cpu_s"]),
+             "", "| bandwidth | peak (N) | peak vs implicit | RMS vs implicit | status |", "|---|---|---|---|---|"]
+    for r in sorted(b["explicit"].values(), key=lambda r: r["bandwidth"]):
+        fin = lambda x: "%+.2f %%" % (100 * x) if x != float("inf") else "-"
+        lines.append("| %g | %.1f | %s | %s | %s |" % (r["bandwidth"], r["peak_N"] or 0, fin(r["peak_diff"]),
+                                                       fin(r["rms_diff"]).lstrip("+"), r["status"].split(";")[0]))
+    return lines + [""]
+
+
 def report(res):
     lines = ["# A fair explicit reference: the shortest ramp within 1 % of the implicit curve", "",
              "Written by `benchmarks/explicit_ramp.py` from `explicit_ramp.json`. Gregoire D = 50 mm beams",
@@ -139,7 +176,7 @@ def report(res):
              "of that limit's difference. All runs of one spacing in one invocation; CPU time is each run's own.",
              "Under load-point control the explicit path ramps the load factor; under CMOD control (`-pd_explicit_cmod %g`,"
              % CMOD_TARGET, "docs/explicit.md) it ramps the CMOD gauge's opening, and a servo drives the load factor after it.", ""]
-    for k in sorted(res, key=lambda k: (res[k].get("beam", "hn") != "hn", -res[k]["dx"])):
+    for k in sorted((k for k in res if not k.startswith("bandwidth")), key=lambda k: (res[k].get("beam", "hn") != "hn", -res[k]["dx"])):
         s = res[k]
         imp = s["implicit"]
         best = s["explicit"]["%.6g" % s["shortest_ramp_s"]]
@@ -162,6 +199,8 @@ def report(res):
                                                                              100 * r["peak_diff"], 100 * r["rms_diff"],
                                                                              "yes" if r["passes"] else "no", r["cpu_s"]))
         lines.append("")
+    for k in sorted(k for k in res if k.startswith("bandwidth")):
+        lines += report_bandwidths(res[k])
     open(os.path.join(OUT, "explicit_ramp.md"), "w").write("\n".join(lines))
 
 
@@ -170,12 +209,16 @@ def main():
     ap.add_argument("--dx", type=float, nargs="+", default=[1e-2, 5e-3])
     ap.add_argument("--beam", choices=list(BEAMS), default="hn")
     ap.add_argument("--control", choices=["load", "cmod"], default="load", help="cmod: the explicit path under CMOD control")
+    ap.add_argument("--bandwidths", type=float, nargs="+", help="servo bandwidths to compare (unnotched beam, CMOD control)")
     ap.add_argument("--bisect", type=int, default=3)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
     res = load_results(JSON)
-    if not a.report:
+    if a.bandwidths:
+        for dx in a.dx:
+            res = store_result(JSON, "bandwidth dx_%g" % dx, bandwidths(dx, a.bandwidths))
+    elif not a.report:
         for dx in a.dx:
             res = store_result(JSON, key(dx, a.beam, a.control), study(dx, a.bisect, a.repeat, a.beam, a.control))
     report(res)
