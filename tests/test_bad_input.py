@@ -31,6 +31,7 @@ CASES = [
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_explicit_cmod", "-1e-4"], "-pd_explicit_cmod"),
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_explicit_cmod", "1e-4", "-pd_adr", "true"], "-pd_explicit_cmod"),
     ("gregoire_d50_hn", ["-pd_mode", "explicit", "-pd_explicit_cmod", "1e-4", "-pd_servo_bandwidth", "2"], "-pd_servo_bandwidth"),
+    ("gregoire_d50_hn_failure", ["-pd_explicit_cmod", "1e-4"], "-pd_explicit_cmod"),
     ("cantilever", ["-pd_region1_force", "0,zero,-1e4"], "-pd_region1_force"),
     ("cantilever", ["-pd_region2_box", "-0.08,0,0,0,0.1,0.1", "-pd_region2_kind", "displacement", "-pd_region2_dofs", "z",
                     "-pd_region2_displacement", "0,0,1e-3"], "-pd_region2"),  # conflicts with the clamp

@@ -201,6 +201,8 @@ static PetscErrorCode ReadFailureSearch(PetscOptionItems *PetscOptionsObject, MP
                PDRegionKinds[load->kind]);
     PetscCheck(sc->damping > 0, comm, PETSC_ERR_USER_INPUT,
                "Option -pd_failure_search: needs -pd_damping > 0 (a trial that survives must come to rest), got %g", (double)sc->damping);
+    PetscCheck(sc->explicit_cmod == 0, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_explicit_cmod: the failure search holds loads of its own; drop -pd_explicit_cmod %g", (double)sc->explicit_cmod);
   }
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_failure_criterion", &crit, NULL));
   sc->failure_criterion = (PDFailureCriterion)crit;

@@ -2,7 +2,8 @@
 
    The state is X = [u; v] per rank, split for TSBASICSYMPLECTIC into "position" (du/dt = v) and
    "momentum" (dv/dt = a(u)); velocity Verlet by default, Euler-Cromer (the thesis's scheme) with
-   -ts_basicsymplectic_type 1. The load factor follows the fifth-order smoothstep of THEORY.md Sec. 6;
+   -ts_basicsymplectic_type 1. The load factor follows the fifth-order smoothstep of THEORY.md Sec. 6 (under
+   CMOD control, -pd_explicit_cmod, the servo of servo.c drives it so that the CMOD gauge follows that ramp);
    constrained dofs move with the prescribed motion (their acceleration is lambda''(t) u_ref). Local
    damping -C v is integrated exactly after each step (v *= exp(-C dt / rho)), which keeps the split
    separable. Bond histories rise at every force evaluation: there is no limiter in dynamics. */
