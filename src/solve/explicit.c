@@ -10,15 +10,25 @@
 #include "explicit.h"
 #include "../model/kernel.h"
 
+/* The fifth-order smoothstep from 0 to L over T, then held: its value and first two time derivatives at t
+   (the load factor's ramp, and the CMOD gauge's under CMOD control). */
+void PDSmoothstep(PetscReal L, PetscReal T, PetscReal t, PetscReal v[3]) {
+  const PetscReal g = PetscMin(t / T, 1);
+  v[0]              = L * g * g * g * (10 - 15 * g + 6 * g * g);
+  v[1]              = t < T ? L / T * 30 * g * g * (1 - g) * (1 - g) : 0;
+  v[2]              = t < T ? L / (T * T) * (60 * g - 180 * g * g + 120 * g * g * g) : 0;
+}
+
 /* Load factor and its second derivative at time t: the smoothstep ramp, or the servo's under CMOD control. */
 static void Ramp(const PDExplicit *c, PetscReal t, PetscReal *lam, PetscReal *lam_tt) {
-  const PetscReal L = c->lambda_max, T = c->t_ramp, g = PetscMin(t / T, 1);
+  PetscReal v[3];
   if (c->servo.on) {
     PDServoAt(&c->servo, t, lam, lam_tt);
     return;
   }
-  *lam    = L * g * g * g * (10 - 15 * g + 6 * g * g);
-  *lam_tt = t < T ? L / (T * T) * (60 * g - 180 * g * g + 120 * g * g * g) : 0;
+  PDSmoothstep(c->lambda_max, c->t_ramp, t, v);
+  *lam    = v[0];
+  *lam_tt = v[2];
 }
 
 /* Instability check (docs/explicit.md, "Stability check"). An integration past its stable step grows the

@@ -20,6 +20,7 @@ PetscErrorCode PDServoSetUp(PDModel *, Vec mass, PetscReal target, PetscReal t_r
 PetscErrorCode PDServoUpdate(PDServo *, const PDModel *, PetscReal t, Vec u);
 void           PDServoAt(const PDServo *, PetscReal t, PetscReal *lam, PetscReal *lam_tt);
 void           PDServoReset(PDServo *);
+void           PDSmoothstep(PetscReal L, PetscReal T, PetscReal t, PetscReal v[3]);
 
 typedef struct PDExplicit PDExplicit;
 /* Called every tenth time step with the velocities; setting *stop ends the integration. */

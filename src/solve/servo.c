@@ -107,15 +107,6 @@ PetscErrorCode PDServoSetUp(PDModel *m, Vec mass, PetscReal target, PetscReal t_
   PetscFunctionReturn(0);
 }
 
-/* The gauge's target opening and its first two time derivatives: the fifth-order smoothstep to the target
-   over the ramp, then held. */
-static void Target(const PDServo *s, PetscReal t, PetscReal c[3]) {
-  const PetscReal C = s->target, T = s->t_ramp, g = PetscMin(t / T, 1);
-  c[0] = C * g * g * g * (10 - 15 * g + 6 * g * g);
-  c[1] = t < T ? C / T * 30 * g * g * (1 - g) * (1 - g) : 0;
-  c[2] = t < T ? C / (T * T) * (60 * g - 180 * g * g + 120 * g * g * g) : 0;
-}
-
 /* The load factor and its second derivative at time t within the current step. */
 void PDServoAt(const PDServo *s, PetscReal t, PetscReal *lam, PetscReal *lam_tt) {
   const PetscReal h = t - s->t0;
@@ -135,7 +126,7 @@ PetscErrorCode PDServoUpdate(PDServo *s, const PDModel *m, PetscReal t, Vec u) {
   s->lam_t += s->lam_tt * h;
   s->t0 = t;
   PetscCall(VecDot(u, m->cmod_pattern, &c));
-  Target(s, t, cs);
+  PDSmoothstep(s->target, s->t_ramp, t, cs); /* the gauge's target opening and its rates */
   /* the gain of the damaged body: its secant opening per unit load factor, no less than the elastic one */
   g         = s->lam > 0 ? PetscMax(s->gain, PetscRealPart(c) / s->lam) : s->gain;
   w         = s->omega * PetscSqrtReal(s->gain / g);
