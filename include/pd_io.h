@@ -16,12 +16,14 @@ typedef struct {
   PetscReal slip;         /* largest |slip| of a bar node with bond slip (m) */
   /* -pd_eps_cu: the bond closest to crushing, its stretch, -stretch / eps_cu and its midpoint (m) */
   PetscReal strain_min, crush_ratio, crush_at[3];
+  PetscReal section[PD_SECTION_N]; /* -pd_section_x: the forces across the section (PDModelSection) */
 } PDCurveRow;
 
 typedef struct {
   MPI_Comm    comm;
   PetscMPIInt rank;
-  FILE       *curve; /* curve.csv, open on rank 0 from PDOutputPrepare to PDCurveClose */
+  FILE       *curve;   /* curve.csv, open on rank 0 from PDOutputPrepare to PDCurveClose */
+  PetscBool   section; /* curve.csv has the section's columns (-pd_section_x) */
   PetscInt    nrows, capacity;
   PDCurveRow *rows;
   PetscInt    steps, newton_its, ksp_its;

@@ -169,6 +169,18 @@ static inline PetscReal PDModelBondStrength(const PDModel *m, PetscInt e) {
 }
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
+/* Forces across the section plane -pd_section_x at u: the bars', the concrete's in tension and in compression
+   (negative) along x, the heights along y at which the concrete's two act, and the shear (along y). */
+typedef enum {
+  PD_SECTION_STEEL,
+  PD_SECTION_TENSION,
+  PD_SECTION_COMPRESSION,
+  PD_SECTION_TENSION_Y,
+  PD_SECTION_COMPRESSION_Y,
+  PD_SECTION_SHEAR,
+  PD_SECTION_N
+} PDSectionColumn;
+PetscErrorCode PDModelSection(PDModel *, Vec u, PetscReal out[PD_SECTION_N]);
 /* The largest |stress| in any bar segment at u with the committed state (Pa; 0 without bars), and the
    largest |slip| of a bar node with bond slip along its bar, against the node it shadows (m; 0 without). */
 PetscErrorCode PDModelSteelStress(PDModel *, Vec u, PetscReal *stress, PetscReal *slip);

@@ -198,6 +198,8 @@ typedef struct {
   PetscInt         load_regions[PD_MAX_REGIONS]; /* the first's kind and direction set the control */
   PetscInt         disp_region;                  /* region whose mean displacement is the curve's displacement */
   PetscBool        has_cmod;
+  PetscBool        has_section;      /* -pd_section_x given */
+  PetscReal        section_x;        /* its plane, halfway between two node columns (m) */
   PetscReal        cmod[6];          /* two gauge points */
   PetscInt         steps;            /* load steps */
   PetscBool        bar_mass_scaling; /* explicit: bar nodes' mass raised to the concrete's stable step */

@@ -90,6 +90,10 @@ CASES = [
     ("bar_prism", ["-pd_bar1_line", "0.1,0.05,0.05,0.3,0.05,0.05", "-pd_bar1_diameter", "0.01"], "-pd_bar1_line"),  # overlaps bar 0
     ("bar_prism", ["-pd_bar2_line", "0,0.03,0.03,0.4,0.03,0.03", "-pd_bar2_diameter", "0.01"], "-pd_bar2"),  # numbering gap
     ("cantilever", ["-pd_bar0_line", "0,0.05,0.05,1,0.05,0.05"], "-pd_bar0_diameter"),  # diameter missing
+    # a section cut inside the body along x, under small kinematics
+    ("rc_beam_2d", ["-pd_section_x", "1.4"], "-pd_section_x"),
+    ("rc_beam_2d", ["-pd_section_x", "0.001"], "-pd_section_x"),  # before the first node column's plane
+    ("rc_beam_2d", ["-pd_section_x", "0.6", "-pd_kinematics", "finite"], "-pd_section_x"),
     # no-fail zones and plates
     ("cantilever", ["-pd_nofail0_box", "0.5005,0.0405,0.0405,0.5006,0.0406,0.0406"], "-pd_nofail0_box"),  # holds no node
     ("cantilever", ["-pd_nofail0_box", "5,5,5,6,6,6"], "-pd_nofail0_box"),  # outside the domain

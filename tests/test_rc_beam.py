@@ -158,5 +158,48 @@ def crush():
           "without -pd_eps_cu: no crushing_strain effect, strain_min 0 (%s)" % ", ".join(r.summary["effects"]))
 
 
+SECTION = ["-pd_law", "elastic", "-pd_steps", "2", "-pd_lambda_max", "0.05", "-ksp_rtol", "1e-10"]
+COLUMNS = ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N", "section_tension_y_m", "section_compression_y_m",
+           "section_shear_N")
+
+
+def section_forces(row):
+    """The section's columns of a curve row: the forces along x, their moment about the soffit (y = 0) and the shear."""
+    ts, tc, cc, yt, yc, v = (row[k] for k in COLUMNS)
+    return ts + tc + cc, -(ts * 0.035 + tc * yt + cc * yc), v
+
+
+def section():
+    # The section cut (-pd_section_x) on the elastic beam: by equilibrium of the part before the plane, the forces
+    # the crossing bonds carry sum to its reactions. The beam has no horizontal load, so the forces along x cancel;
+    # the shear is the left support's reaction, half the load by symmetry (the supports differ in x only); and
+    # the moment about the soffit grows along the span by that reaction times the distance (the support's
+    # own couple, its two node columns held, drops out of the difference).
+    runs = {x: run("rc_beam_2d", *SECTION, "-pd_section_x", x) for x in (0.2, 0.6)}
+    for x, r in runs.items():
+        for row in r.curve[1:]:
+            n, m, v = section_forces(row)
+            check(abs(n) < 1e-8 * row["section_concrete_tension_N"], "x = %g m, step %d: forces along x sum to %.3g N (tension %.4g N)" % (
+                x, row["step"], n, row["section_concrete_tension_N"]))
+            check(abs(-v / (row["load_N"] / 2) - 1) < 1e-4, "x = %g m, step %d: shear %.6g N against half the load %.6g N (1e-4)" % (
+                x, row["step"], -v, row["load_N"] / 2))
+    for a, b in zip(runs[0.2].curve[1:], runs[0.6].curve[1:]):
+        dm = section_forces(b)[1] - section_forces(a)[1]
+        check(abs(dm / (b["load_N"] / 2 * 0.4) - 1) < 1e-5, "step %d: moment from x = 0.2 to 0.6 m grows by %.6g N m, the reaction times "
+              "0.4 m %.6g N m (1e-5)" % (b["step"], dm, b["load_N"] / 2 * 0.4))
+    # two ranks sum the same forces: the plane at mid-span is where the two ranks' slabs meet, so that every bond
+    # crossing it has a ghost end and is held by both ranks (each counts it once)
+    one, two = run("rc_beam_2d", *SECTION, "-pd_section_x", 0.65), run("rc_beam_2d", *SECTION, "-pd_section_x", 0.65, ranks=2)
+    diff = max(abs(b[k] - a[k]) / abs(a["section_concrete_tension_N"]) for a, b in zip(one.curve, two.curve) for k in COLUMNS)
+    check(len(two.curve) == len(one.curve) and diff < 1e-8, "two ranks: the section's columns within %.1e of one rank's (1e-8 of the tension)" % diff)
+    # a path-following run's restart from a checkpoint keeps the section's columns of the rows before it
+    arc = ["-pd_law", "elastic", "-pd_control", "arclength", "-pd_section_x", 0.6]
+    a = run("rc_beam_2d", *arc, "-pd_steps", "4", "-pd_lambda_max", "0.02", "-pd_checkpoint_every", "2")
+    b = run("rc_beam_2d", *arc, "-pd_steps", "8", "-pd_lambda_max", "0.04", "-pd_restart", os.path.join(a.dir, "checkpoint.h5"))
+    kept = [[row[k] for k in COLUMNS] for row in b.curve[:len(a.curve)]]
+    check(kept == [[row[k] for k in COLUMNS] for row in a.curve] and len(b.curve) > len(a.curve),
+          "restart: the section's columns of the %d rows before it kept, %d rows in all" % (len(a.curve), len(b.curve)))
+
+
 if __name__ == "__main__":
-    {"slip": slip, "mode": mode, "crush": crush}.get(sys.argv[1] if sys.argv[1:] else "", main)()
+    {"slip": slip, "mode": mode, "crush": crush, "section": section}.get(sys.argv[1] if sys.argv[1:] else "", main)()

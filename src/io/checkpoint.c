@@ -285,21 +285,35 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
 }
 
 /* Columns of the rows kept apart from them, so that the rows of checkpoints written without them still
-   read: the largest slip (scenes with bond slip) and the bond strain closest to crushing (-pd_eps_cu). */
-typedef enum { COLUMN_SLIP, COLUMN_STRAIN_MIN } RowColumn;
-static const char *const column_names[] = {"curve_slip", "curve_strain_min"};
+   read: the largest slip (scenes with bond slip), the bond strain closest to crushing (-pd_eps_cu) and the
+   section's forces (-pd_section_x, PD_SECTION_N values a row). */
+typedef enum { COLUMN_SLIP, COLUMN_STRAIN_MIN, COLUMN_SECTION, COLUMN_N } RowColumn;
+static const char *const column_names[] = {"curve_slip", "curve_strain_min", "curve_section"};
+
+static inline PetscInt ColumnWidth(RowColumn c) {
+  return c == COLUMN_SECTION ? PD_SECTION_N : 1;
+}
+
+static inline PetscReal *ColumnValue(PDCurveRow *row, RowColumn c, PetscInt k) {
+  return c == COLUMN_SLIP ? &row->slip : c == COLUMN_STRAIN_MIN ? &row->strain_min : &row->section[k];
+}
+
+static inline PetscReal ColumnGet(const PDCurveRow *row, RowColumn c, PetscInt k) {
+  return c == COLUMN_SLIP ? row->slip : c == COLUMN_STRAIN_MIN ? row->strain_min : row->section[k];
+}
 
 static PetscErrorCode WriteRowColumn(MPI_Comm comm, const PDRecord *rec, RowColumn c, PetscViewer v) {
-  Vec          S;
-  PetscScalar *a;
-  PetscInt     lo, hi;
+  const PetscInt w = ColumnWidth(c);
+  Vec            S;
+  PetscScalar   *a;
+  PetscInt       lo, hi;
 
   PetscFunctionBeginUser;
-  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, rec->nrows), &S));
+  PetscCall(VecCreateMPI(comm, PETSC_DECIDE, PetscMax(1, rec->nrows) * w, &S));
   PetscCall(PetscObjectSetName((PetscObject)S, column_names[c]));
   PetscCall(VecGetOwnershipRange(S, &lo, &hi));
   PetscCall(VecGetArray(S, &a));
-  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r < rec->nrows ? (c == COLUMN_SLIP ? rec->rows[r].slip : rec->rows[r].strain_min) : 0;
+  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r / w < rec->nrows ? ColumnGet(&rec->rows[r / w], c, r % w) : 0;
   PetscCall(VecRestoreArray(S, &a));
   PetscCall(VecView(S, v));
   PetscCall(VecDestroy(&S));
@@ -349,28 +363,31 @@ static PetscErrorCode WriteRows(MPI_Comm comm, const PDRecord *rec, PetscViewer 
 }
 
 static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, PetscBool slip, PetscViewer v) {
-  Vec                all, col[2] = {NULL, NULL};
-  const PetscScalar *a, *c[2]    = {NULL, NULL};
+  Vec                all, col[COLUMN_N] = {NULL, NULL, NULL};
+  const PetscScalar *a, *c[COLUMN_N]    = {NULL, NULL, NULL};
   PetscBool          has;
 
   PetscFunctionBeginUser;
   PetscCall(ReadToAll(comm, v, "curve", PetscMax(1, nrows) * ROW_FIELDS, &all));
   if (slip) PetscCall(ReadToAll(comm, v, column_names[COLUMN_SLIP], PetscMax(1, nrows), &col[COLUMN_SLIP]));
-  PetscCall(PetscViewerHDF5HasDataset(v, column_names[COLUMN_STRAIN_MIN], &has)); /* (not in files from before it existed) */
-  if (has) PetscCall(ReadToAll(comm, v, column_names[COLUMN_STRAIN_MIN], PetscMax(1, nrows), &col[COLUMN_STRAIN_MIN]));
+  for (RowColumn k = COLUMN_STRAIN_MIN; k < COLUMN_N; k++) { /* (not in files from before they existed) */
+    PetscCall(PetscViewerHDF5HasDataset(v, column_names[k], &has));
+    if (has && (k != COLUMN_SECTION || rec->section))
+      PetscCall(ReadToAll(comm, v, column_names[k], PetscMax(1, nrows) * ColumnWidth(k), &col[k]));
+  }
   PetscCall(VecGetArrayRead(all, &a));
-  for (PetscInt k = 0; k < 2; k++)
+  for (PetscInt k = 0; k < COLUMN_N; k++)
     if (col[k]) PetscCall(VecGetArrayRead(col[k], &c[k]));
   PetscCall(PDRecordClearRows(rec));
   for (PetscInt r = 0; r < nrows; r++) {
     PDCurveRow row = {0};
     RowUnpack(a + r * ROW_FIELDS, &row);
-    if (c[COLUMN_SLIP]) row.slip = PetscRealPart(c[COLUMN_SLIP][r]);
-    if (c[COLUMN_STRAIN_MIN]) row.strain_min = PetscRealPart(c[COLUMN_STRAIN_MIN][r]);
+    for (RowColumn k = COLUMN_SLIP; k < COLUMN_N; k++)
+      for (PetscInt q = 0; c[k] && q < ColumnWidth(k); q++) *ColumnValue(&row, k, q) = PetscRealPart(c[k][r * ColumnWidth(k) + q]);
     PetscCall(PDRecordAddRow(rec, &row));
   }
   PetscCall(VecRestoreArrayRead(all, &a));
-  for (PetscInt k = 0; k < 2; k++) {
+  for (PetscInt k = 0; k < COLUMN_N; k++) {
     if (col[k]) PetscCall(VecRestoreArrayRead(col[k], &c[k]));
     PetscCall(VecDestroy(&col[k]));
   }
@@ -416,6 +433,7 @@ PetscErrorCode PDCheckpointWrite(PDModel *m, PDRecord *rec, PetscInt nvec, const
   PetscCall(WriteRows(comm, rec, v));
   if (m->lat->nbarnodes) PetscCall(WriteRowColumn(comm, rec, COLUMN_SLIP, v));
   if (PDSceneHasCrushingStrain(m->scene)) PetscCall(WriteRowColumn(comm, rec, COLUMN_STRAIN_MIN, v));
+  if (rec->section) PetscCall(WriteRowColumn(comm, rec, COLUMN_SECTION, v));
   for (PDBondField f = PD_BOND_KAPPA; f <= PD_BOND_STEEL_DISSIPATED; f++)
     if (PDBondFieldKept(m, kappa_prev, f)) PetscCall(PDBondFieldWrite(m, kappa_prev, f, v));
   for (PetscInt k = 0; k < nvec; k++) {

@@ -16,6 +16,7 @@ PetscErrorCode PDRecordCreate(MPI_Comm comm, const PDScene *sc, PDRecord *rec) {
   rec->comm = comm;
   PetscCallMPI(MPI_Comm_rank(comm, &rec->rank));
   PetscCall(PetscStrncpy(rec->dir, sc->output_dir, sizeof rec->dir));
+  rec->section = sc->has_section;
   PetscCall(PetscTime(&t));
   rec->t_start = t;
   PetscFunctionReturn(0);

@@ -654,6 +654,43 @@ PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
   return smax;
 }
 
+/* Sums over this rank's bonds (each counted once) that cross the plane x = sc->section_x, of the force the
+   part beyond the plane exerts through them on the part before it (small kinematics, the bond law's force
+   along the bond): sum[PD_SECTION_STEEL] the bar segments' x-component, sum[PD_SECTION_TENSION] and
+   [PD_SECTION_COMPRESSION] the concrete's positive and negative x-components, sum[PD_SECTION_SHEAR] the
+   y-component of all, and into the two heights' slots the concrete's x-components times the height y at
+   which the bond crosses the plane (moments, divided by the forces once summed over the ranks). */
+void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECTION_N]) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscReal  X   = m->scene->section_x;
+  for (PetscInt k = 0; k < PD_SECTION_N; k++) sum[k] = 0;
+  for (PetscInt e = 0; e < bd->nbonds; e++) {
+    const PetscInt   i = bd->a[e], j = bd->b[e];
+    const PetscReal *xi = &lat->x[3 * i], *xj = &lat->x[3 * j];
+    PetscReal        dir[3], L0, L, s, q, gc, gp, gs = 0, side, y;
+    if ((xi[0] - X) * (xj[0] - X) >= 0 || !PDBondCountedHere(lat, bd, e)) continue;
+    BondState(m->scene, m->bs, xi, xj, &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
+    ConcreteForce(m, e, s, &gc, &gp);
+    if (bd->seg && bd->seg[e] >= 0) {
+      PetscReal sp;
+      PetscBool rupt;
+      SegmentForce(m, bd->seg[e], s, &gs, &gp, &sp, &rupt);
+    }
+    side = xj[0] > xi[0] ? 1 : -1; /* dir along the bond from the part before the plane to the part beyond */
+    y    = xi[1] + (X - xi[0]) / (xj[0] - xi[0]) * (xj[1] - xi[1]);
+    sum[PD_SECTION_STEEL] += side * gs * dir[0];
+    if (gc * dir[0] * side > 0) {
+      sum[PD_SECTION_TENSION] += side * gc * dir[0];
+      sum[PD_SECTION_TENSION_Y] += side * gc * dir[0] * y;
+    } else {
+      sum[PD_SECTION_COMPRESSION] += side * gc * dir[0];
+      sum[PD_SECTION_COMPRESSION_Y] += side * gc * dir[0] * y;
+    }
+    sum[PD_SECTION_SHEAR] += side * (gc + gs) * dir[1];
+  }
+}
+
 /* Largest |slip| of the owned bar nodes: their displacement along the bar less that of the node they shadow
    (the same layer: owned too). */
 PetscReal PDModelSlipLocal(PDModel *m, const PetscScalar *u) {

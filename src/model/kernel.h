@@ -113,5 +113,6 @@ PetscErrorCode PDModelGetProductInput(PDModel *, Vec x, PetscBool eliminate, Pet
 PetscErrorCode PDModelRestoreProductInput(PDModel *, PetscScalar **xl, Vec *xloc);
 PetscErrorCode PDModelScatterToLocal(PDModel *, Vec u, const PetscScalar **ul, Vec *loc);
 PetscErrorCode PDModelRestoreLocal(PDModel *, const PetscScalar **ul, Vec *loc);
+void           PDModelSectionLocal(PDModel *, const PetscScalar *u, PetscReal sum[PD_SECTION_N]);
 PetscErrorCode PDModelScatterSecondToLocal(PDModel *, Vec u, PetscReal lambda, const PetscScalar **ul, Vec *loc);
 PetscErrorCode PDModelRestoreSecondLocal(PDModel *, const PetscScalar **ul, Vec *loc);

@@ -144,6 +144,19 @@ static PetscErrorCode ReadLoadPath(PetscOptionItems *PetscOptionsObject, MPI_Com
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_stop_cmod", &sc->stop_cmod, NULL));
   PetscCheck(sc->stop_cmod == 0 || sc->has_cmod, comm, PETSC_ERR_USER_INPUT,
              "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_section_x", &sc->section_x, &sc->has_section));
+  if (sc->has_section) {
+    /* the lattice's columns sit at lo + (k + 1/2) dx (lattice.c centres them in the box): the plane goes halfway
+       between two, so that no bond lies in it */
+    const PetscReal len = sc->domain[3] - sc->domain[0], n = PetscMax(1, PetscFloorReal(len / sc->dx + 0.5));
+    const PetscReal lo = sc->domain[0] + 0.5 * (len - n * sc->dx), k = PetscFloorReal((sc->section_x - lo) / sc->dx + 0.5);
+    PetscCheck(k >= 1 && k <= n - 1, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_section_x: %g m is not inside the body along x (%g to %g m, node columns %g m apart)", (double)sc->section_x,
+               (double)sc->domain[0], (double)sc->domain[3], (double)sc->dx);
+    PetscCheck(sc->kinematics == PD_KINEMATICS_SMALL, comm, PETSC_ERR_USER_INPUT,
+               "Option -pd_section_x: section forces are summed under small kinematics only (-pd_kinematics small)");
+    sc->section_x = lo + k * sc->dx;
+  }
   PetscFunctionReturn(0);
 }
 

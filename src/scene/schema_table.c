@@ -437,6 +437,13 @@ const PDOptionSpec PDOptionSchema[] = {
      .def_note = "none",
      .help     = "CMOD gauge: two points; the opening along the line joining them, displacements interpolated linearly from the lattice "
                  "(extrapolated to the face within half a cell)"},
+    {.name     = "-pd_section_x",
+     .type     = PD_OPTION_REAL,
+     .unit     = "m",
+     .def_note = "none",
+     .help     = "A section cut normal to x, moved to the nearest plane halfway between two node columns: curve.csv gets the forces "
+                 "the bonds crossing it carry (steel, concrete in tension and in compression, shear) and where the concrete's act "
+                 "(docs/reinforcement.md, Section forces). Small kinematics"},
     {.name  = "-pd_steps",
      .type  = PD_OPTION_INT,
      .def   = "1",

@@ -393,6 +393,7 @@ static PetscErrorCode PostStep(TS ts) {
     PetscCall(PDModelEnergy(m, u, &row.stored, &row.dissipated));
     PetscCall(PDModelSteelStress(m, u, &row.steel_stress, &row.slip));
     PetscCall(PDModelCrushing(m, u, PETSC_FALSE, &row.crush_ratio, &row.strain_min, row.crush_at));
+    PetscCall(PDModelSection(m, u, row.section));
     PetscCall(PDRecordAddRow(c->rec, &row));
     c->rec->steps = step;
     if (m->scene->stop_cmod > 0 && row.cmod >= m->scene->stop_cmod) c->stopped = c->cmod_reached = PETSC_TRUE;

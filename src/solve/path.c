@@ -75,6 +75,7 @@ PetscErrorCode PDPathAccept(PDModel *m, PDRecord *rec, PDPath *p, Vec u, PetscRe
   row->dissipated            = energy[1];
   PetscCall(PDModelSteelStress(m, u, &row->steel_stress, &row->slip));
   PetscCall(PDModelCrushing(m, u, PETSC_TRUE, &row->crush_ratio, &row->strain_min, row->crush_at)); /* the commit's strain state */
+  PetscCall(PDModelSection(m, u, row->section));
   PetscCall(PDRecordAddRow(rec, row));
   rec->steps = p->step;
   PetscFunctionReturn(0);
