@@ -45,6 +45,17 @@ CASES = [
     # d = 112.5 mm, the nearest to 115 mm), on the default path with its default solver
     ("slip_dx5", "bond slip, dx = 5 mm, d = 112.5 mm, implicit (default path)", ["-pd_dx", "0.005", "-pd_bar0_line", "0,0.0375,1.3,0.0375", "-pd_bar0_bond",
                                                                                "slip", "-pd_bar0_fcm", "38e6", "-pd_lambda_max", "0.45", "-pd_steps", "120"]),
+    # the bond-slip run with a section cut through the mid-span crack (-pd_section_x): what carries the moment there
+    ("slip_section", "bond slip, implicit, section at mid-span", ["-pd_bar0_bond", "slip", "-pd_bar0_fcm", "38e6", "-pd_lambda_max", "0.6",
+                                                                  "-pd_steps", "160", "-ksp_type", "preonly", "-pc_type", "cholesky",
+                                                                  "-pd_section_x", "0.65"]),
+    # the same with the supports and the load on one node column each (the scene's hold two, which resist the beam's
+    # rotation there like clamped plates): a simply supported beam under a knife-edge load, as section analysis assumes
+    ("slip_knife", "bond slip, implicit, supports and load on one node column", ["-pd_region0_box", "0.045,0,0.045,0", "-pd_region1_box",
+                                                                                 "1.245,0,1.245,0", "-pd_region2_box", "0.645,0.15,0.645,0.15",
+                                                                                 *["-pd_bar0_bond", "slip", "-pd_bar0_fcm", "38e6", "-pd_lambda_max",
+                                                                                   "0.6", "-pd_steps", "160", "-ksp_type", "preonly", "-pc_type",
+                                                                                   "cholesky", "-pd_section_x", "0.65"]]),
     # 20,000 time steps as the other explicit runs: the bar nodes' mass is scaled to the concrete's stable step
     ("slip_explicit", "bond slip, explicit", ["-pd_bar0_bond", "slip", "-pd_bar0_fcm", "38e6", "-pd_mode", "explicit", "-pd_lambda_max", "0.6"]),
 ]
@@ -78,6 +89,21 @@ def delaminated(outdir, y, dx):
     return float(np.sum(d[on] > 0.5)) * dx
 
 
+def at_section(extra, row):
+    """What the section cut (-pd_section_x) reports at a curve row: the moment of the forces crossing it over the nominal
+    one, R (x - x_support) with R = P / 2 and x_support the centre of the left support's box; the concrete's share of the
+    tension; the lever arm from the bar to the concrete's compression; the bar's force over the yield force."""
+    x = float(extra[extra.index("-pd_section_x") + 1])
+    box = extra[extra.index("-pd_region0_box") + 1] if "-pd_region0_box" in extra else "0.045,0,0.055,0"
+    xs = 0.5 * (float(box.split(",")[0]) + float(box.split(",")[2]))
+    ts, tc, cc, yt, yc = (row[k] for k in ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N",
+                                            "section_tension_y_m", "section_compression_y_m"))
+    y_bar = H - bar_depth(extra)
+    moment = -(ts * y_bar + tc * yt + cc * yc)
+    return {"load_N": row["load_N"], "x_m": x, "support_x_m": xs, "moment_over_nominal": moment / (row["load_N"] / 2 * (x - xs)),
+            "concrete_tension_share": tc / (ts + tc), "concrete_tension_y_m": yt, "lever_arm_m": yc - y_bar, "steel_N": ts}
+
+
 def measure(names):
     res = load_results(JSON)
     res["section"] = section()
@@ -96,10 +122,12 @@ def measure(names):
         sec = section(bar_depth(extra))
         ratio = before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * SPAN / 4 / (AS * sec["lever_arm_m"])) if before else None
         status = open(os.path.join(out, "log")).read().strip().splitlines()[-1]
+        cut = at_section(extra, before[-1]) if before and "-pd_section_x" in extra else None
         res["runs"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "status": status,
                              "peak_N": rows[k]["load_N"], "disp_at_peak_m": rows[k]["disp_m"], "steel_stress_at_peak_Pa": rows[k]["steel_stress_Pa"],
                              "first_yield_N": first["load_N"] if first else None, "steel_over_section": ratio, "broken_bonds": int(rows[-1]["broken_bonds"]),
-                             "delaminated_m": delaminated(out, H - bar_depth(extra), float(extra[extra.index("-pd_dx") + 1]) if "-pd_dx" in extra else 0.01), "final_disp_m": rows[-1]["disp_m"], "P_y_N": sec["P_y_N"], "commit": COMMIT}
+                             "delaminated_m": delaminated(out, H - bar_depth(extra), float(extra[extra.index("-pd_dx") + 1]) if "-pd_dx" in extra else 0.01), "final_disp_m": rows[-1]["disp_m"], "P_y_N": sec["P_y_N"], "commit": COMMIT,
+                             "section_before_yield": cut}
         print(name, res["runs"][name])
     save_results(JSON, res)
 
@@ -133,6 +161,18 @@ def report():
             "%.0f" % r["first_yield_N"] if r["first_yield_N"] else "none", "%.2f" % (r["first_yield_N"] / r.get("P_y_N", s["P_y_N"])) if r["first_yield_N"] else "-",
             "%.2f" % ratio if ratio else "-", r["broken_bonds"], "%.2f" % r["delaminated_m"] if r["delaminated_m"] is not None else "-", r["cpu_s"], r.get("commit", "before 4e4abbb"),
             status(r["status"])))
+    cuts = [(res["runs"][n]["what"], res["runs"][n]["section_before_yield"]) for n, _, _ in CASES if res["runs"].get(n, {}).get("section_before_yield")]
+    if cuts:
+        lines += ["", "## At the section", "",
+                  "A section cut (`-pd_section_x`, docs/reinforcement.md \"Section forces\") through the mid-span crack, at the last row "
+                  "before the bar yields: the moment of the forces crossing it over the nominal one, P/2 times the distance from the "
+                  "left support's centre; of the tension across it, the concrete's share and the height at which it acts; the lever "
+                  "arm from the bar to the concrete's compression, against the cracked section's z = (1 - k/3) d = %.1f mm." % (
+                      1e3 * s["lever_arm_m"]), "",
+                  "| run | load (N) | moment / nominal | concrete's share of the tension | its height (mm) | lever arm (mm) |", "|---|---|---|---|---|---|"]
+        for what, c in cuts:
+            lines.append("| %s | %.0f | %.3f | %.2f | %.0f | %.1f |" % (what, c["load_N"], c["moment_over_nominal"], c["concrete_tension_share"],
+                                                                 1e3 * c["concrete_tension_y_m"], 1e3 * c["lever_arm_m"]))
     lines += ["", "Commands: `build/pdimplicit -options_file options/rc_beam_2d.opts` with the options of each run:", ""]
     lines += ["    %s" % " ".join(c[2]) for c in CASES]
     write_lines("rc_beam.md", lines)
