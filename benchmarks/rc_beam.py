@@ -91,16 +91,21 @@ def delaminated(outdir, y, dx):
 
 def at_section(extra, row):
     """What the section cut (-pd_section_x) reports at a curve row: the moment of the forces crossing it over the nominal
-    one, R (x - x_support) with R = P / 2 and x_support the centre of the left support's box; the concrete's share of the
-    tension; the lever arm from the bar to the concrete's compression; the bar's force over the yield force."""
+    one, that of a simply supported beam under a point load, P/2 (x - x_support) - P max(0, x - x_load) with the
+    centres of the left support's and the load's boxes; the concrete's share of the tension; the lever arm from the
+    bar to the concrete's compression."""
+    def centre(region, default):
+        opt = "-pd_region%d_box" % region
+        box = (extra[extra.index(opt) + 1] if opt in extra else default).split(",")
+        return 0.5 * (float(box[0]) + float(box[2]))
     x = float(extra[extra.index("-pd_section_x") + 1])
-    box = extra[extra.index("-pd_region0_box") + 1] if "-pd_region0_box" in extra else "0.045,0,0.055,0"
-    xs = 0.5 * (float(box.split(",")[0]) + float(box.split(",")[2]))
+    xs, xl = centre(0, "0.045,0,0.055,0"), centre(2, "0.64,0.15,0.66,0.15")
     ts, tc, cc, yt, yc = (row[k] for k in ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N",
                                             "section_tension_y_m", "section_compression_y_m"))
     y_bar = H - bar_depth(extra)
     moment = -(ts * y_bar + tc * yt + cc * yc)
-    return {"load_N": row["load_N"], "x_m": x, "support_x_m": xs, "moment_over_nominal": moment / (row["load_N"] / 2 * (x - xs)),
+    nominal = row["load_N"] / 2 * (x - xs) - row["load_N"] * max(0, x - xl)
+    return {"load_N": row["load_N"], "x_m": x, "support_x_m": xs, "moment_over_nominal": moment / nominal,
             "concrete_tension_share": tc / (ts + tc), "concrete_tension_y_m": yt, "lever_arm_m": yc - y_bar, "steel_N": ts}
 
 
@@ -165,8 +170,8 @@ def report():
     if cuts:
         lines += ["", "## At the section", "",
                   "A section cut (`-pd_section_x`, docs/reinforcement.md \"Section forces\") through the mid-span crack, at the last row "
-                  "before the bar yields: the moment of the forces crossing it over the nominal one, P/2 times the distance from the "
-                  "left support's centre; of the tension across it, the concrete's share and the height at which it acts; the lever "
+                  "before the bar yields: the moment of the forces crossing it over the nominal one, a simply supported beam's under a "
+                  "point load at the load's centre; of the tension across it, the concrete's share and the height at which it acts; the lever "
                   "arm from the bar to the concrete's compression, against the cracked section's z = (1 - k/3) d = %.1f mm." % (
                       1e3 * s["lever_arm_m"]), "",
                   "| run | load (N) | moment / nominal | concrete's share of the tension | its height (mm) | lever arm (mm) |", "|---|---|---|---|---|---|"]
