@@ -60,6 +60,14 @@ def run(scene_name, *args, ranks=1, expect_ok=True, outdir=None):
     return r
 
 
+def run_both(first, second):
+    """Runs two scenes at once, each given as (scene name, options...): a test comparing two long runs takes the time
+    of the longer (its CTest entry claims two processors). Returns both Runs."""
+    from concurrent.futures import ThreadPoolExecutor
+    with ThreadPoolExecutor(2) as pool:
+        return tuple(pool.map(lambda c: run(c[0], *c[1:]), (first, second)))
+
+
 def translated(scene_name, offset):
     """Options that move a scene's domain and every box, gauge point and cylinder centre of it by offset
     (m) along each axis."""

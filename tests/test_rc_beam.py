@@ -7,12 +7,13 @@ failure mode summary.json reports, on the bond-slip beam traced through its bar'
 `crush`, the crushing criterion (-pd_eps_cu) on an elastic prism and on that beam.
 Usage: test_rc_beam.py [slip|mode|crush]"""
 import bisect
+import math
 import os
 import sys
 
 import numpy as np
 
-from pdtest import check, run
+from pdtest import check, run, run_both
 
 OPTS = ["-pd_lambda_max", "0.065"]  # 0.52 mm at the load point, about 6.1 kN
 
@@ -158,6 +159,49 @@ def crush():
           "without -pd_eps_cu: no crushing_strain effect, strain_min 0 (%s)" % ", ".join(r.summary["effects"]))
 
 
+def flexure():
+    # The beam in four-point bending with knife-edge supports and loads (options/rc_flexure_2d.opts), traced to 3.44 mm
+    # at the load points by path following with IMPL-EX steps (the options its scene recommends) and, at the same
+    # time, to 4 mm on the explicit path. Cracked-section analysis: the bar yields at P_y = 2 A_s f_y (1 - k/3) d / a.
+    a_s, d, a, n = math.pi * 0.008 ** 2 / 4, 0.115, 0.4, 200 / 30
+    rho = a_s / (0.1 * d)
+    k = math.sqrt(2 * rho * n + (rho * n) ** 2) - rho * n
+    p_y = 2 * a_s * 500e6 * (1 - k / 3) * d / a
+    m_cr = 3e6 * 0.1 * 0.15 ** 2 / 6
+    path = ["-pd_control", "arclength", "-pd_arclength_implex", "0.01", "-pd_steps", "200", "-ksp_type", "preonly", "-pc_type", "cholesky"]
+    imp, exp = run_both(("rc_flexure_2d", *path, "-pd_lambda_max", "0.43", "-pd_section_x", "0.65"),
+                        ("rc_flexure_2d", "-pd_lambda_max", "0.5", "-pd_mode", "explicit", "-pd_ramp_time", "0.24"))
+    check(imp.summary["converged"] and exp.summary["converged"], "both paths reach their end (%s; %s)" % (imp.summary["status"], exp.summary["status"]))
+    # flexural cracks: on the soffit, damage only where the moment passes the cracking moment (x from 0.045 + a M_cr / M_y,
+    # M_y = P_y a / 2, to the mirror point), and at least two cracks between the loads
+    x, _, dmg = imp.fields()
+    x, dmg = x.reshape(len(dmg), -1), dmg.ravel()
+    soffit = (np.abs(x[:, 1] - 0.005) < 1e-9) & (dmg > 0.5)
+    lo = 0.045 + a * m_cr / (p_y * a / 2)
+    cracks = np.unique(np.round(x[soffit, 0] / 0.02))  # columns two apart count as one crack
+    check(soffit.any() and np.all((x[soffit, 0] > lo) & (x[soffit, 0] < 1.29 - lo)) and np.sum((cracks * 0.02 > 0.445) & (cracks * 0.02 < 0.845)) >= 2,
+          "soffit damaged at x = %s m, all between %.3f and %.3f m where M > M_cr, at least 2 cracks between the loads" % (
+              ", ".join("%.3f" % v for v in sorted(set(np.round(x[soffit, 0], 3)))), lo, 1.29 - lo))
+    first = imp.summary["bars"]["first_yield"]
+    check(first and abs(first["load_N"] / p_y - 1) < 0.05, "first yield at %s N against P_y = %.0f N by section analysis (5 %%)" % (
+        "%.0f" % first["load_N"] if first else "none", p_y))
+    # at the first yield the two loads are equal, as section analysis assumes: the moment across mid-span is P a / 2
+    row = next(r for r in imp.curve if r["step"] == first["step"])
+    m = -sum(row[f] * y for f, y in (("section_steel_N", 0.035), ("section_concrete_tension_N", row["section_tension_y_m"]),
+                                       ("section_concrete_compression_N", row["section_compression_y_m"])))
+    check(abs(m / (row["load_N"] * a / 2) - 1) < 0.01, "moment at mid-span at the first yield %.1f N m, P a / 2 = %.1f N m (1 %%)" % (m, row["load_N"] * a / 2))
+    # the explicit cross-check: the same elastic stiffness before the first crack (its ramp's inertia shows earlier),
+    # and the same plateau once the bar has yielded (the crack phase between oscillates about the static curve)
+    r = [q for q in imp.curve if q["disp_m"] <= 2e-4][-1]
+    k0, k1 = r["load_N"] / r["disp_m"], at(exp.curve, r["disp_m"], "load_N") / r["disp_m"]
+    check(abs(k0 / k1 - 1) < 0.01, "stiffness at %.2f mm %.4e N/m against %.4e N/m explicit (1 %%)" % (1e3 * r["disp_m"], k0, k1))
+    held = [q["load_N"] for q in imp.curve if q["step"] >= first["step"]]
+    late = [q["load_N"] for q in exp.curve if 3.5e-3 < q["disp_m"] <= 4e-3]
+    pi, pe = np.mean(held), np.mean(late)
+    check(len(held) > 1 and late and abs(pi / pe - 1) < 0.03, "plateau: %.0f N implicit once the bar yields (%d rows), %.0f N explicit from 3.5 "
+          "to 4 mm (3 %%), P_y %.0f N" % (pi, len(held), pe, p_y))
+
+
 SECTION = ["-pd_law", "elastic", "-pd_steps", "2", "-pd_lambda_max", "0.05", "-ksp_rtol", "1e-10"]
 COLUMNS = ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N", "section_tension_y_m", "section_compression_y_m",
            "section_shear_N")
@@ -202,4 +246,4 @@ def section():
 
 
 if __name__ == "__main__":
-    {"slip": slip, "mode": mode, "crush": crush, "section": section}.get(sys.argv[1] if sys.argv[1:] else "", main)()
+    {"slip": slip, "mode": mode, "crush": crush, "section": section, "flexure": flexure}.get(sys.argv[1] if sys.argv[1:] else "", main)()
