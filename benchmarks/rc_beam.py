@@ -61,6 +61,22 @@ CASES = [
 ]
 
 
+# The same beam in four-point bending with knife-edge supports and loads (options/rc_flexure_2d.opts): loads a = 0.4 m
+# from the supports, P the sum of both
+FLEXURE_SCENE = os.path.join(ROOT, "options", "rc_flexure_2d.opts")
+A = 0.4
+PATH = ["-pd_control", "arclength", "-pd_arclength_implex", "0.01", "-pd_steps", "200", "-ksp_type", "preonly", "-pc_type", "cholesky"]
+# at dx = 5 mm the node columns nearest the knife edges (those of dx = 10 mm lie halfway between two) and the bar's node line
+DX5 = ["-pd_dx", "0.005", "-pd_bar0_line", "0,0.0375,1.3,0.0375", "-pd_region0_box", "0.0475,0,0.0475,0", "-pd_region1_box", "1.2475,0,1.2475,0",
+       "-pd_region2_box", "0.4475,0.15,0.4475,0.15", "-pd_region3_box", "0.8475,0.15,0.8475,0.15"]
+FLEXURE = [
+    ("flexure_path", "path following, IMPL-EX 0.01, Cholesky (the scene's recommendation)", PATH + ["-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
+    ("flexure_default", "default path", ["-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
+    ("flexure_explicit", "explicit, ramp 0.24 s", ["-pd_lambda_max", "0.5", "-pd_mode", "explicit", "-pd_ramp_time", "0.24"]),
+    ("flexure_dx5", "path following as the first, dx = 5 mm, d = 112.5 mm", PATH + DX5 + ["-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
+]
+
+
 def section(d=D):
     """Cracked-section analysis of three-point bending with the bar at depth d: cracking load from f_t W, yield
     load from the elastic cracked section (n = E_s/E_c, neutral axis k d, lever arm (1 - k/3) d)."""
@@ -109,10 +125,48 @@ def at_section(extra, row):
             "concrete_tension_share": tc / (ts + tc), "concrete_tension_y_m": yt, "lever_arm_m": yc - y_bar, "steel_N": ts}
 
 
+def flexure_yield(d):
+    """Cracked-section yield load of the four-point beam with the bar at depth d."""
+    return 2 * AS * FY * section(d)["lever_arm_m"] / A
+
+
+def measure_flexure(res, names):
+    """The four-point beam's runs: first yield against section analysis, the steel's stress against the cracked
+    section's under the constant moment P a / 2, the plateau after the first yield, the section cut."""
+    res.setdefault("flexure", {})
+    for name, what, extra in FLEXURE:
+        if name not in names:
+            continue
+        out = tempfile.mkdtemp(prefix="pdbench_")
+        with open(os.path.join(out, "log"), "w") as log:
+            code, wall, cpu, _ = run_timed([EXE, "-options_file", FLEXURE_SCENE, "-pd_output_dir", out, *extra], 3600, log)
+        rows = curve_rows(out)
+        d = bar_depth(extra)
+        z = section(d)["lever_arm_m"]
+        first = next((r for r in rows if r["yielded_segments"] > 0), None)
+        before = [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]
+        held = [r["load_N"] for r in rows if first and r["step"] >= first["step"]]
+        moment = None
+        if first and "-pd_section_x" in extra:
+            f = first
+            moment = -(f["section_steel_N"] * (H - d) + f["section_concrete_tension_N"] * f["section_tension_y_m"] +
+                       f["section_concrete_compression_N"] * f["section_compression_y_m"]) / (f["load_N"] * A / 2)
+        res["flexure"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "wall_s": round(wall, 1), "commit": COMMIT,
+                                "status": open(os.path.join(out, "log")).read().strip().splitlines()[-1], "P_y_N": flexure_yield(d),
+                                "first_yield_N": first["load_N"] if first else None, "first_yield_disp_m": first["disp_m"] if first else None,
+                                "steel_over_section": before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * A / 2 / (AS * z)) if before else None,
+                                "plateau_N": sum(held) / len(held) if held else None, "moment_over_Pa2_at_first_yield": moment,
+                                "peak_N": max(r["load_N"] for r in rows), "final_disp_m": rows[-1]["disp_m"], "steps": int(rows[-1]["step"]),
+                                "curve": [[r["disp_m"], r["load_N"]] for r in rows[::max(1, len(rows) // 400)]]}
+        print(name, {k: v for k, v in res["flexure"][name].items() if k != "curve"})
+        save_results(JSON, res)
+
+
 def measure(names):
     res = load_results(JSON)
     res["section"] = section()
     res.setdefault("runs", {})
+    measure_flexure(res, [n for n, _, _ in FLEXURE] if not names else names)
     for name, what, extra in CASES:
         if names and name not in names:
             continue
@@ -180,7 +234,52 @@ def report():
                                                                  1e3 * c["concrete_tension_y_m"], 1e3 * c["lever_arm_m"]))
     lines += ["", "Commands: `build/pdimplicit -options_file options/rc_beam_2d.opts` with the options of each run:", ""]
     lines += ["    %s" % " ".join(c[2]) for c in CASES]
+    lines += flexure_report(res)
     write_lines("rc_beam.md", lines)
+
+
+def flexure_report(res):
+    """The four-point beam's table and plot (rc_flexure.png)."""
+    runs = [(n, res.get("flexure", {}).get(n)) for n, _, _ in FLEXURE]
+    runs = [(n, r) for n, r in runs if r]
+    if not runs:
+        return []
+    lines = ["", "## Four-point bending with knife edges", "",
+             "`options/rc_flexure_2d.opts`: the same beam, section and bar (bond slip), its supports and its two loads each on one "
+             "node column, the loads a = 400 mm from the supports, so that the middle 400 mm carry P a / 2 (P the sum of both loads) "
+             "wherever their cracks form. By cracked-section analysis the bar yields at P_y = 2 A_s f_y (1 - k/3) d / a. "
+             "Steel / section: the bar's largest stress over M / (A_s z) with M = P a / 2, at the last row with broken bonds before "
+             "the bar yields. Plateau: the mean load from the first yield to the end. Moment at mid-span: the section cut's "
+             "(`-pd_section_x 0.65`) over P a / 2 at the first yield (the two loads are applied as equal displacements, so they "
+             "share P equally only as long as the beam cracks symmetrically).", "",
+             "| run | P_y (N) | first yield (N) | first yield / P_y | at (mm) | steel / section | plateau / P_y | moment at mid-span / (P a/2) | steps | CPU (s) | commit | end |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for _, r in runs:
+        fy = r["first_yield_N"]
+        lines.append("| %s | %.0f | %s | %s | %s | %s | %s | %s | %d | %.1f | %s | %s |" % (
+            r["what"], r["P_y_N"], "%.0f" % fy if fy else "none", "%.3f" % (fy / r["P_y_N"]) if fy else "-",
+            "%.2f" % (1e3 * r["first_yield_disp_m"]) if fy else "-", "%.3f" % r["steel_over_section"] if r["steel_over_section"] else "-",
+            "%.3f" % (r["plateau_N"] / r["P_y_N"]) if r["plateau_N"] else "-",
+            "%.4f" % r["moment_over_Pa2_at_first_yield"] if r["moment_over_Pa2_at_first_yield"] else "-", r["steps"], r["cpu_s"], r["commit"],
+            status(r["status"])))
+    lines += ["", "![load against the load points' displacement](rc_flexure.png)", "",
+              "Commands: `build/pdimplicit -options_file options/rc_flexure_2d.opts` with the options of each run:", ""]
+    lines += ["    %s" % " ".join(r["options"]) for _, r in runs]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    for _, r in runs:
+        ax.plot([1e3 * c[0] for c in r["curve"]], [c[1] / 1e3 for c in r["curve"]], lw=0.8, label=r["what"])
+    for p_y in sorted(set(round(r["P_y_N"]) for _, r in runs)):
+        ax.axhline(p_y / 1e3, color="k", ls="--", lw=0.6)
+    ax.set_xlabel("load points' displacement (mm)")
+    ax.set_ylabel("P (kN)")
+    ax.set_title("four-point bending; dashed: P_y by cracked-section analysis")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(RESULTS_DIR, "rc_flexure.png"), dpi=110)
+    return lines
 
 
 if __name__ == "__main__":
