@@ -159,7 +159,9 @@ def measure_flexure(res, names):
                                 "peak_N": max(r["load_N"] for r in rows), "final_disp_m": rows[-1]["disp_m"], "steps": int(rows[-1]["step"]),
                                 "curve": [[r["disp_m"], r["load_N"]] for r in rows[::max(1, len(rows) // 400)]]}
         print(name, {k: v for k, v in res["flexure"][name].items() if k != "curve"})
-        save_results(JSON, res)
+        merged = load_results(JSON)  # (another invocation may have stored runs meanwhile)
+        merged.setdefault("flexure", {})[name] = res["flexure"][name]
+        save_results(JSON, merged)
 
 
 def measure(names):
@@ -188,7 +190,10 @@ def measure(names):
                              "delaminated_m": delaminated(out, H - bar_depth(extra), float(extra[extra.index("-pd_dx") + 1]) if "-pd_dx" in extra else 0.01), "final_disp_m": rows[-1]["disp_m"], "P_y_N": sec["P_y_N"], "commit": COMMIT,
                              "section_before_yield": cut}
         print(name, res["runs"][name])
-    save_results(JSON, res)
+        merged = load_results(JSON)
+        merged["section"] = res["section"]
+        merged.setdefault("runs", {})[name] = res["runs"][name]
+        save_results(JSON, merged)
 
 
 def status(line):
