@@ -220,6 +220,8 @@ def section():
     # the moment about the soffit grows along the span by that reaction times the distance (the support's
     # own couple, its two node columns held, drops out of the difference).
     runs = {x: run("rc_beam_2d", *SECTION, "-pd_section_x", x) for x in (0.2, 0.6)}
+    moved = run("rc_beam_2d", *SECTION, "-pd_steps", "1", "-pd_section_x", 0.6032).summary["section"]["x_m"]
+    check(abs(moved - 0.6) < 1e-12, "-pd_section_x 0.6032 cuts at x = %.6f m, halfway between the node columns at 0.595 and 0.605 m" % moved)
     for x, r in runs.items():
         for row in r.curve[1:]:
             n, m, v = section_forces(row)

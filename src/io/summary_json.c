@@ -209,6 +209,8 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
         (double)rec->dt_eq46, (double)sc->dt_safety, (double)rec->dt, rec->time_steps, (double)rec->ke_max, (double)rec->v_peak,
         (double)rec->ds_peak, (double)sc->damping, (double)rec->bar_mass_added, sc->explicit_cmod > 0 ? "cmod" : "load",
         (double)sc->explicit_cmod, (double)rec->servo_gain, (double)rec->servo_omega1, (double)sc->servo_bandwidth, rec->servo_its));
+  if (sc->has_section) /* the plane the cut was moved to, halfway between two node columns */
+    PetscCall(PetscFPrintf(comm, fp, "  \"section\": {\"x_m\": %.10e},\n", (double)sc->section_x));
   if (sc->failure_search) {
     PetscCall(PetscFPrintf(
         comm, fp, "  \"failure_search\": {\"criterion\": \"%s\", \"tolerance\": %.6e, \"lower_N\": %.6e, \"upper_N\": %.6e, \"trials\": [",
