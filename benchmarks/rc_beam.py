@@ -228,8 +228,9 @@ def report():
     cuts = [(res["runs"][n]["what"], res["runs"][n]["section_before_yield"]) for n, _, _ in CASES if res["runs"].get(n, {}).get("section_before_yield")]
     if cuts:
         lines += ["", "## At the section", "",
-                  "A section cut (`-pd_section_x`, docs/reinforcement.md \"Section forces\") through the mid-span crack, at the last row "
-                  "before the bar yields: the moment of the forces crossing it over the nominal one, a simply supported beam's under a "
+                  "A section cut at mid-span (`-pd_section_x 0.65`, docs/reinforcement.md \"Section forces\"), at the last row "
+                  "before the bar yields (the scene's beam cracks there; on knife edges its widest crack formed a few centimetres "
+                  "beside the load, so that the cut crosses a narrower one): the moment of the forces crossing it over the nominal one, a simply supported beam's under a "
                   "point load at the load's centre; of the tension across it, the concrete's share and the height at which it acts; the lever "
                   "arm from the bar to the concrete's compression, against the cracked section's z = (1 - k/3) d = %.1f mm." % (
                       1e3 * s["lever_arm_m"]), "",
@@ -254,7 +255,8 @@ def flexure_report(res):
              "node column, the loads a = 400 mm from the supports, so that the middle 400 mm carry P a / 2 (P the sum of both loads) "
              "wherever their cracks form. By cracked-section analysis the bar yields at P_y = 2 A_s f_y (1 - k/3) d / a. "
              "Steel / section: the bar's largest stress over M / (A_s z) with M = P a / 2, at the last row with broken bonds before "
-             "the bar yields. Plateau: the mean load from the first yield to the end. Moment at mid-span: the section cut's "
+             "the bar yields. The explicit curve oscillates about the static one while the beam cracks (its first yield and "
+             "steel / section are read on an oscillation) and settles on the plateau. Plateau: the mean load from the first yield to the end. Moment at mid-span: the section cut's "
              "(`-pd_section_x 0.65`) over P a / 2 at the first yield (the two loads are applied as equal displacements, so they "
              "share P equally only as long as the beam cracks symmetrically).", "",
              "| run | P_y (N) | first yield (N) | first yield / P_y | at (mm) | steel / section | plateau / P_y | moment at mid-span / (P a/2) | steps | CPU (s) | commit | end |",
