@@ -117,7 +117,7 @@ def at_section(extra, row):
     x = float(extra[extra.index("-pd_section_x") + 1])
     xs, xl = centre(0, "0.045,0,0.055,0"), centre(2, "0.64,0.15,0.66,0.15")
     ts, tc, cc, yt, yc = (row[k] for k in ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N",
-                                            "section_tension_y_m", "section_compression_y_m"))
+                                            "section_tension_height_m", "section_compression_height_m"))
     y_bar = H - bar_depth(extra)
     moment = -(ts * y_bar + tc * yt + cc * yc)
     nominal = row["load_N"] / 2 * (x - xs) - row["load_N"] * max(0, x - xl)
@@ -149,8 +149,8 @@ def measure_flexure(res, names):
         moment = None
         if first and "-pd_section_x" in extra:
             f = first
-            moment = -(f["section_steel_N"] * (H - d) + f["section_concrete_tension_N"] * f["section_tension_y_m"] +
-                       f["section_concrete_compression_N"] * f["section_compression_y_m"]) / (f["load_N"] * A / 2)
+            moment = -(f["section_steel_N"] * (H - d) + f["section_concrete_tension_N"] * f["section_tension_height_m"] +
+                       f["section_concrete_compression_N"] * f["section_compression_height_m"]) / (f["load_N"] * A / 2)
         res["flexure"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "wall_s": round(wall, 1), "commit": COMMIT,
                                 "status": open(os.path.join(out, "log")).read().strip().splitlines()[-1], "P_y_N": flexure_yield(d),
                                 "first_yield_N": first["load_N"] if first else None, "first_yield_disp_m": first["disp_m"] if first else None,

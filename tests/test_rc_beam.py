@@ -187,8 +187,8 @@ def flexure():
         "%.0f" % first["load_N"] if first else "none", p_y))
     # at the first yield the two loads are equal, as section analysis assumes: the moment across mid-span is P a / 2
     row = next(r for r in imp.curve if r["step"] == first["step"])
-    m = -sum(row[f] * y for f, y in (("section_steel_N", 0.035), ("section_concrete_tension_N", row["section_tension_y_m"]),
-                                       ("section_concrete_compression_N", row["section_compression_y_m"])))
+    m = -sum(row[f] * y for f, y in (("section_steel_N", 0.035), ("section_concrete_tension_N", row["section_tension_height_m"]),
+                                       ("section_concrete_compression_N", row["section_compression_height_m"])))
     check(abs(m / (row["load_N"] * a / 2) - 1) < 0.01, "moment at mid-span at the first yield %.1f N m, P a / 2 = %.1f N m (1 %%)" % (m, row["load_N"] * a / 2))
     # the explicit cross-check: the same elastic stiffness before the first crack (its ramp's inertia shows earlier),
     # and the same plateau once the bar has yielded (the crack phase between oscillates about the static curve)
@@ -203,7 +203,7 @@ def flexure():
 
 
 SECTION = ["-pd_law", "elastic", "-pd_steps", "2", "-pd_lambda_max", "0.05", "-ksp_rtol", "1e-10"]
-COLUMNS = ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N", "section_tension_y_m", "section_compression_y_m",
+COLUMNS = ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N", "section_tension_height_m", "section_compression_height_m",
            "section_shear_N")
 
 
@@ -233,6 +233,19 @@ def section():
         dm = section_forces(b)[1] - section_forces(a)[1]
         check(abs(dm / (b["load_N"] / 2 * 0.4) - 1) < 1e-5, "step %d: moment from x = 0.2 to 0.6 m grows by %.6g N m, the reaction times "
               "0.4 m %.6g N m (1e-5)" % (b["step"], dm, b["load_N"] / 2 * 0.4))
+    # in 3D the heights and the shear are along z, the vertical of the scenes' beams: the elastic cantilever
+    # (options/cantilever.opts, 10 kN down at its free end) cut at x = 0.3 and 0.7 m carries the load as shear at
+    # both, no net force along x, and a moment that changes by the load times 0.4 m between them (hogging: the
+    # tension at the top)
+    cut = {}
+    for x in (0.3, 0.7):
+        row = run("cantilever", "-pd_section_x", x, "-ksp_rtol", "1e-10").curve[-1]
+        ts, tc, cc, yt, yc, v = (row[k] for k in COLUMNS)
+        check(abs(ts + tc + cc) < 1e-6 * tc and abs(v / -1e4 - 1) < 1e-6, "cantilever cut at x = %g m: forces along x sum to %.2g N (tension "
+              "%.4g N), shear %.6g N against the load -1e4 N (1e-6)" % (x, ts + tc + cc, tc, v))
+        cut[x] = -(tc * yt + cc * yc)
+    check(abs(abs(cut[0.3] - cut[0.7]) / (1e4 * 0.4) - 1) < 1e-6, "cantilever: moment from x = 0.3 to 0.7 m changes by %.6g N m, the "
+          "load times 0.4 m (1e-6)" % (cut[0.7] - cut[0.3]))
     # two ranks sum the same forces: the plane at mid-span is where the two ranks' slabs meet, so that every bond
     # crossing it has a ghost end and is held by both ranks (each counts it once)
     one, two = run("rc_beam_2d", *SECTION, "-pd_section_x", 0.65), run("rc_beam_2d", *SECTION, "-pd_section_x", 0.65, ranks=2)

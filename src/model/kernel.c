@@ -658,12 +658,14 @@ PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
    part beyond the plane exerts through them on the part before it (small kinematics, the bond law's force
    along the bond): sum[PD_SECTION_STEEL] the bar segments' x-component, sum[PD_SECTION_TENSION] and
    [PD_SECTION_COMPRESSION] the concrete's positive and negative x-components, sum[PD_SECTION_SHEAR] the
-   y-component of all, and into the two heights' slots the concrete's x-components times the height y at
-   which the bond crosses the plane (moments, divided by the forces once summed over the ranks). */
+   vertical component of all, and into the two heights' slots the concrete's x-components times the height at
+   which the bond crosses the plane (moments, divided by the forces once summed over the ranks). Vertical is
+   the last axis: y in 2D, z in 3D, as the scenes' beams stand. */
 void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECTION_N]) {
   const PDBonds   *bd  = m->bonds;
   const PDLattice *lat = m->lat;
   const PetscReal  X   = m->scene->section_x;
+  const PetscInt   v   = m->bs - 1; /* the vertical axis */
   for (PetscInt k = 0; k < PD_SECTION_N; k++) sum[k] = 0;
   for (PetscInt e = 0; e < bd->nbonds; e++) {
     const PetscInt   i = bd->a[e], j = bd->b[e];
@@ -678,7 +680,7 @@ void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECT
       SegmentForce(m, bd->seg[e], s, &gs, &gp, &sp, &rupt);
     }
     side = xj[0] > xi[0] ? 1 : -1; /* dir along the bond from the part before the plane to the part beyond */
-    y    = xi[1] + (X - xi[0]) / (xj[0] - xi[0]) * (xj[1] - xi[1]);
+    y    = xi[v] + (X - xi[0]) / (xj[0] - xi[0]) * (xj[v] - xi[v]);
     sum[PD_SECTION_STEEL] += side * gs * dir[0];
     if (gc * dir[0] * side > 0) {
       sum[PD_SECTION_TENSION] += side * gc * dir[0];
@@ -687,7 +689,7 @@ void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECT
       sum[PD_SECTION_COMPRESSION] += side * gc * dir[0];
       sum[PD_SECTION_COMPRESSION_Y] += side * gc * dir[0] * y;
     }
-    sum[PD_SECTION_SHEAR] += side * (gc + gs) * dir[1];
+    sum[PD_SECTION_SHEAR] += side * (gc + gs) * dir[v];
   }
 }
 

@@ -442,8 +442,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .unit     = "m",
      .def_note = "none",
      .help     = "A section cut normal to x, moved to the nearest plane halfway between two node columns: curve.csv gets the forces "
-                 "the bonds crossing it carry (steel, concrete in tension and in compression, shear) and where the concrete's act "
-                 "(docs/reinforcement.md, Section forces). Small kinematics"},
+                 "the bonds crossing it carry (steel, concrete in tension and in compression, shear) and at which height (y in 2D, z in "
+                 "3D) the concrete's act (docs/reinforcement.md, Section forces). Small kinematics"},
     {.name  = "-pd_steps",
      .type  = PD_OPTION_INT,
      .def   = "1",
