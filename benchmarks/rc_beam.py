@@ -14,7 +14,7 @@ import subprocess
 import sys
 import tempfile
 
-from common import curve_rows, EXE, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results, write_lines
+from common import curve_rows, EXE, OUT, RESULTS_DIR, ROOT, last_fields, run_timed, save_results, load_results, write_lines
 
 JSON = os.path.join(RESULTS_DIR, "rc_beam.json")
 # the commit each run was measured at (runs can be measured apart: CASE arguments)
@@ -285,7 +285,7 @@ def flexure_report(res):
     ax.set_title("four-point bending; dashed: P_y by cracked-section analysis")
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(os.path.join(RESULTS_DIR, "rc_flexure.png"), dpi=110)
+    fig.savefig(os.path.join(OUT, "rc_flexure.png"), dpi=110)
     return lines
 
 

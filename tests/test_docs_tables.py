@@ -17,7 +17,7 @@ REPORTS = {"accuracy_cost.py": ["accuracy_cost.md"], "gregoire.py": ["gregoire.m
            "compression.py": ["compression.md"], "crosscheck.py": ["crosscheck.md"],
            "partition.py": ["partition.md"], "scaling.py": ["scaling.md"], "stuttgart.py": ["stuttgart.md"],
            "softening_convergence.py": ["softening_convergence.md"], "targets.py": ["targets.md"], "memory.py": ["memory.md"],
-           "build_profile.py": ["build_profile.md"]}
+           "build_profile.py": ["build_profile.md"], "implex_step.py": ["implex_step.md"]}
 
 
 def main():
