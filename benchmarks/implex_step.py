@@ -25,7 +25,7 @@ def measure(errors):
         args = ["-pd_dx", str(DX), "-pd_control", "arclength", "-pd_stop_fraction", "0.1", "-pd_arclength_implex", str(t)]
         r = run_scene(SCENE, args, 3600, ranks=RANKS)
         rows = r["rows"] or []
-        res["runs"]["%g" % t] = {"error": t, "options": args, "wall_s": round(r["wall"], 1), "cpu_s": round(r["cpu"], 1), "exit": r["code"],
+        res["runs"]["%g" % t] = {"error": t, "options": args, "wall_s": round(r["wall"], 1), "exit": r["code"],
                                  "status": r["summary"]["status"] if r["summary"] else None, "steps": len(rows),
                                  "newton_its": r["summary"]["newton_its"] if r["summary"] else None,
                                  "ksp_its": r["summary"]["ksp_its"] if r["summary"] else None,
