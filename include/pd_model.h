@@ -90,6 +90,8 @@ typedef struct {
   PetscInt   nisolated;     /* global nodes without any bond, pinned */
   PetscInt   nzero_dofs;    /* global free dofs without stiffness (isolated nodes, notch planes), pinned */
   PetscInt64 history_bytes; /* per-bond history storage allocated (0 for elastic scenes) */
+  PetscInt   nsection;      /* -pd_section_x: this rank's bonds across the plane, each counted once (section.c) */
+  PetscInt  *section_bonds; /* their ids, found at the first cut (NULL before) */
   PetscInt   jacobian_assemblies;
   PetscInt64 rows_assembled;         /* node rows this rank has written into stiffness matrices (assembly.c) */
   PetscReal  t_assembly, t_residual; /* seconds spent in the Jacobian and residual */

@@ -237,6 +237,15 @@ typedef struct {
   PDOptionValue     *options;
 } PDScene;
 
+/* The lattice's node layers along axis a < dim: their number, and the first one's coordinate (nodes sit at cell
+   centres; when dx does not divide the box, the lattice is centred in it). */
+static inline PetscInt PDSceneLayers(const PDScene *sc, PetscInt a, PetscReal *first) {
+  const PetscReal len = sc->domain[3 + a] - sc->domain[a];
+  const PetscInt  n   = PetscMax(1, (PetscInt)PetscFloorReal(len / sc->dx + 0.5));
+  *first              = sc->domain[a] + 0.5 * (len - n * sc->dx) + 0.5 * sc->dx;
+  return n;
+}
+
 /* A bar's steel area A_s = count pi d^2 / 4 (m^2). */
 static inline PetscReal PDBarArea(const PDBar *b) {
   return b->count * PETSC_PI * b->diameter * b->diameter / 4;

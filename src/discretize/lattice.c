@@ -126,10 +126,8 @@ PetscErrorCode PDLatticeCreate(MPI_Comm comm, const PDScene *sc, PDLattice *lat)
   lat->horizon     = sc->horizon_ratio * sc->dx;
   lat->cell_volume = sc->dim == 3 ? sc->dx * sc->dx * sc->dx : sc->dx * sc->dx * sc->thickness;
   for (PetscInt a = 0; a < 3; a++) {
-    const PetscReal len = sc->domain[3 + a] - sc->domain[a];
-    lat->n[a]           = a < sc->dim ? PetscMax(1, (PetscInt)PetscFloorReal(len / sc->dx + 0.5)) : 1;
-    /* when dx does not divide the box, the lattice is centred in it */
-    lat->origin[a] = a < sc->dim ? sc->domain[a] + 0.5 * (len - lat->n[a] * sc->dx) + 0.5 * sc->dx : 0;
+    lat->origin[a] = 0;
+    lat->n[a]      = a < sc->dim ? PDSceneLayers(sc, a, &lat->origin[a]) : 1;
   }
   PetscCall(PDLatticeSetUpBarNodes(sc, lat));
   lat->layer   = lat->n[1] * lat->n[2] + lat->nslot;

@@ -654,9 +654,9 @@ PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
   return smax;
 }
 
-/* Sums over this rank's bonds (each counted once) that cross the plane x = sc->section_x, of the force the
-   part beyond the plane exerts through them on the part before it (small kinematics, the bond law's force
-   along the bond): sum[PD_SECTION_STEEL] the bar segments' x-component, sum[PD_SECTION_TENSION] and
+/* Sums over the bonds that cross the plane x = sc->section_x (m->section_bonds: this rank's, each counted
+   once), of the force the part beyond the plane exerts through them on the part before it (small kinematics,
+   the bond law's force along the bond): sum[PD_SECTION_STEEL] the bar segments' x-component, sum[PD_SECTION_TENSION] and
    [PD_SECTION_COMPRESSION] the concrete's positive and negative x-components, sum[PD_SECTION_SHEAR] the
    vertical component of all, and into the two heights' slots the concrete's x-components times the height at
    which the bond crosses the plane (moments, divided by the forces once summed over the ranks). Vertical is
@@ -667,11 +667,10 @@ void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECT
   const PetscReal  X   = m->scene->section_x;
   const PetscInt   v   = m->bs - 1; /* the vertical axis */
   for (PetscInt k = 0; k < PD_SECTION_N; k++) sum[k] = 0;
-  for (PetscInt e = 0; e < bd->nbonds; e++) {
-    const PetscInt   i = bd->a[e], j = bd->b[e];
+  for (PetscInt c = 0; c < m->nsection; c++) {
+    const PetscInt   e = m->section_bonds[c], i = bd->a[e], j = bd->b[e];
     const PetscReal *xi = &lat->x[3 * i], *xj = &lat->x[3 * j];
     PetscReal        dir[3], L0, L, s, q, gc, gp, gs = 0, side, y;
-    if ((xi[0] - X) * (xj[0] - X) >= 0 || !PDBondCountedHere(lat, bd, e)) continue;
     BondState(m->scene, m->bs, xi, xj, &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
     ConcreteForce(m, e, s, &gc, &gp);
     if (bd->seg && bd->seg[e] >= 0) {

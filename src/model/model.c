@@ -383,6 +383,7 @@ PetscErrorCode PDModelDestroy(PDModel *m) {
   PetscCall(PetscFree(m->shift));
   PetscCall(VecDestroy(&m->dilatation));
   PetscCall(PetscFree3(m->sp_n, m->ruptured_n, m->dissipated_n));
+  PetscCall(PetscFree(m->section_bonds));
   PetscFunctionReturn(0);
 }
 

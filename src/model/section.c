@@ -4,6 +4,27 @@
    reaction on that part, and their moment the bending moment there (docs/reinforcement.md, Section forces). */
 #include "kernel.h"
 
+/* This rank's bonds whose ends lie on both sides of the plane, each counted once (a bond with a ghost end is
+   held by two ranks): fixed by the reference configuration, so found once. */
+static PetscErrorCode CrossingBonds(PDModel *m) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscReal  X   = m->scene->section_x;
+
+  PetscFunctionBeginUser;
+  for (PetscInt pass = 0; pass < 2; pass++) { /* count, then fill */
+    PetscInt n = 0;
+    for (PetscInt e = 0; e < bd->nbonds; e++)
+      if ((lat->x[3 * bd->a[e]] - X) * (lat->x[3 * bd->b[e]] - X) < 0 && PDBondCountedHere(lat, bd, e)) {
+        if (pass) m->section_bonds[n] = e;
+        n++;
+      }
+    if (!pass) PetscCall(PetscMalloc1(PetscMax(1, n), &m->section_bonds));
+    m->nsection = n;
+  }
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDModelSection(PDModel *m, Vec u, PetscReal out[PD_SECTION_N]) {
   const PetscScalar *ul;
   Vec                loc;
@@ -12,6 +33,7 @@ PetscErrorCode PDModelSection(PDModel *m, Vec u, PetscReal out[PD_SECTION_N]) {
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < PD_SECTION_N; k++) out[k] = 0;
   if (!m->scene->has_section) PetscFunctionReturn(0);
+  if (!m->section_bonds) PetscCall(CrossingBonds(m));
   PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
   PDModelSectionLocal(m, ul, mine);
   PetscCall(PDModelRestoreLocal(m, &ul, &loc));

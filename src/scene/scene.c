@@ -146,16 +146,16 @@ static PetscErrorCode ReadLoadPath(PetscOptionItems *PetscOptionsObject, MPI_Com
              "Option -pd_stop_cmod: the scene has no CMOD gauge (-pd_cmod_points)");
   PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_section_x", &sc->section_x, &sc->has_section));
   if (sc->has_section) {
-    /* the lattice's columns sit at lo + (k + 1/2) dx (lattice.c centres them in the box): the plane goes halfway
-       between two, so that no bond lies in it */
-    const PetscReal len = sc->domain[3] - sc->domain[0], n = PetscMax(1, PetscFloorReal(len / sc->dx + 0.5));
-    const PetscReal lo = sc->domain[0] + 0.5 * (len - n * sc->dx), k = PetscFloorReal((sc->section_x - lo) / sc->dx + 0.5);
+    /* the plane goes halfway between two node columns, first + (k - 1/2) dx, so that no bond lies in it */
+    PetscReal       first;
+    const PetscInt  n = PDSceneLayers(sc, 0, &first);
+    const PetscReal k = PetscFloorReal((sc->section_x - first) / sc->dx + 1);
     PetscCheck(k >= 1 && k <= n - 1, comm, PETSC_ERR_USER_INPUT,
                "Option -pd_section_x: %g m is not inside the body along x (%g to %g m, node columns %g m apart)", (double)sc->section_x,
                (double)sc->domain[0], (double)sc->domain[3], (double)sc->dx);
     PetscCheck(sc->kinematics == PD_KINEMATICS_SMALL, comm, PETSC_ERR_USER_INPUT,
                "Option -pd_section_x: section forces are summed under small kinematics only (-pd_kinematics small)");
-    sc->section_x = lo + k * sc->dx;
+    sc->section_x = first + (k - 0.5) * sc->dx;
   }
   PetscFunctionReturn(0);
 }
