@@ -19,6 +19,7 @@
 #include "checkpoint_bonds.h"
 #include "kernel.h"
 #include <petscviewerhdf5.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -290,20 +291,16 @@ static PetscErrorCode ReadHistory(PDModel *m, PetscReal *kappa_prev, PetscViewer
 typedef enum { COLUMN_SLIP, COLUMN_STRAIN_MIN, COLUMN_SECTION, COLUMN_N } RowColumn;
 static const char *const column_names[] = {"curve_slip", "curve_strain_min", "curve_section"};
 
-static inline PetscInt ColumnWidth(RowColumn c) {
-  return c == COLUMN_SECTION ? PD_SECTION_N : 1;
-}
+static const size_t   column_offset[] = {offsetof(PDCurveRow, slip), offsetof(PDCurveRow, strain_min), offsetof(PDCurveRow, section)};
+static const PetscInt column_width[]  = {1, 1, PD_SECTION_N};
 
+/* Value k of column c in a row. */
 static inline PetscReal *ColumnValue(PDCurveRow *row, RowColumn c, PetscInt k) {
-  return c == COLUMN_SLIP ? &row->slip : c == COLUMN_STRAIN_MIN ? &row->strain_min : &row->section[k];
-}
-
-static inline PetscReal ColumnGet(const PDCurveRow *row, RowColumn c, PetscInt k) {
-  return c == COLUMN_SLIP ? row->slip : c == COLUMN_STRAIN_MIN ? row->strain_min : row->section[k];
+  return (PetscReal *)((char *)row + column_offset[c]) + k;
 }
 
 static PetscErrorCode WriteRowColumn(MPI_Comm comm, const PDRecord *rec, RowColumn c, PetscViewer v) {
-  const PetscInt w = ColumnWidth(c);
+  const PetscInt w = column_width[c];
   Vec            S;
   PetscScalar   *a;
   PetscInt       lo, hi;
@@ -313,7 +310,7 @@ static PetscErrorCode WriteRowColumn(MPI_Comm comm, const PDRecord *rec, RowColu
   PetscCall(PetscObjectSetName((PetscObject)S, column_names[c]));
   PetscCall(VecGetOwnershipRange(S, &lo, &hi));
   PetscCall(VecGetArray(S, &a));
-  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r / w < rec->nrows ? ColumnGet(&rec->rows[r / w], c, r % w) : 0;
+  for (PetscInt r = lo; r < hi; r++) a[r - lo] = r / w < rec->nrows ? *ColumnValue(&rec->rows[r / w], c, r % w) : 0;
   PetscCall(VecRestoreArray(S, &a));
   PetscCall(VecView(S, v));
   PetscCall(VecDestroy(&S));
@@ -373,7 +370,7 @@ static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, Pet
   for (RowColumn k = COLUMN_STRAIN_MIN; k < COLUMN_N; k++) { /* (not in files from before they existed) */
     PetscCall(PetscViewerHDF5HasDataset(v, column_names[k], &has));
     if (has && (k != COLUMN_SECTION || rec->section))
-      PetscCall(ReadToAll(comm, v, column_names[k], PetscMax(1, nrows) * ColumnWidth(k), &col[k]));
+      PetscCall(ReadToAll(comm, v, column_names[k], PetscMax(1, nrows) * column_width[k], &col[k]));
   }
   PetscCall(VecGetArrayRead(all, &a));
   for (PetscInt k = 0; k < COLUMN_N; k++)
@@ -383,7 +380,7 @@ static PetscErrorCode ReadRows(MPI_Comm comm, PDRecord *rec, PetscInt nrows, Pet
     PDCurveRow row = {0};
     RowUnpack(a + r * ROW_FIELDS, &row);
     for (RowColumn k = COLUMN_SLIP; k < COLUMN_N; k++)
-      for (PetscInt q = 0; c[k] && q < ColumnWidth(k); q++) *ColumnValue(&row, k, q) = PetscRealPart(c[k][r * ColumnWidth(k) + q]);
+      for (PetscInt q = 0; c[k] && q < column_width[k]; q++) *ColumnValue(&row, k, q) = PetscRealPart(c[k][r * column_width[k] + q]);
     PetscCall(PDRecordAddRow(rec, &row));
   }
   PetscCall(VecRestoreArrayRead(all, &a));
