@@ -105,6 +105,12 @@ def delaminated(outdir, y, dx):
     return float(np.sum(d[on] > 0.5)) * dx
 
 
+def section_moment(row):
+    """The bending moment the section cut's forces along x carry, about height 0: minus each times its height."""
+    return -sum(row["section_%s" % f] * row["section_%s_height_m" % h] for f, h in (("steel_N", "steel"), ("concrete_tension_N", "tension"),
+                                                                                     ("concrete_compression_N", "compression")))
+
+
 def at_section(extra, row):
     """What the section cut (-pd_section_x) reports at a curve row: the moment of the forces crossing it over the nominal
     one, that of a simply supported beam under a point load, P/2 (x - x_support) - P max(0, x - x_load) with the
@@ -116,10 +122,9 @@ def at_section(extra, row):
         return 0.5 * (float(box[0]) + float(box[2]))
     x = float(extra[extra.index("-pd_section_x") + 1])
     xs, xl = centre(0, "0.045,0,0.055,0"), centre(2, "0.64,0.15,0.66,0.15")
-    ts, tc, cc, yt, yc = (row[k] for k in ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N",
-                                            "section_tension_height_m", "section_compression_height_m"))
-    y_bar = H - bar_depth(extra)
-    moment = -(ts * y_bar + tc * yt + cc * yc)
+    ts, tc, yt, yc = (row[k] for k in ("section_steel_N", "section_concrete_tension_N", "section_tension_height_m", "section_compression_height_m"))
+    y_bar = row["section_steel_height_m"]
+    moment = section_moment(row)
     nominal = row["load_N"] / 2 * (x - xs) - row["load_N"] * max(0, x - xl)
     return {"load_N": row["load_N"], "x_m": x, "support_x_m": xs, "moment_over_nominal": moment / nominal,
             "concrete_tension_share": tc / (ts + tc), "concrete_tension_y_m": yt, "lever_arm_m": yc - y_bar, "steel_N": ts}
@@ -146,11 +151,7 @@ def measure_flexure(res, names):
         first = next((r for r in rows if r["yielded_segments"] > 0), None)
         before = [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]
         held = [r["load_N"] for r in rows if first and r["step"] >= first["step"]]
-        moment = None
-        if first and "-pd_section_x" in extra:
-            f = first
-            moment = -(f["section_steel_N"] * (H - d) + f["section_concrete_tension_N"] * f["section_tension_height_m"] +
-                       f["section_concrete_compression_N"] * f["section_compression_height_m"]) / (f["load_N"] * A / 2)
+        moment = section_moment(first) / (first["load_N"] * A / 2) if first and "-pd_section_x" in extra else None
         res["flexure"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "wall_s": round(wall, 1), "commit": COMMIT,
                                 "status": open(os.path.join(out, "log")).read().strip().splitlines()[-1], "P_y_N": flexure_yield(d),
                                 "first_yield_N": first["load_N"] if first else None, "first_yield_disp_m": first["disp_m"] if first else None,

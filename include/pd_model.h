@@ -172,12 +172,13 @@ static inline PetscReal PDModelBondStrength(const PDModel *m, PetscInt e) {
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
 /* Forces across the section plane -pd_section_x at u: the bars', the concrete's in tension and in compression
-   (negative) along x, the heights at which the concrete's two act, and the shear; height and shear along the
-   vertical, the last axis (y in 2D, z in 3D). */
+   (negative) along x, the heights at which the three act, and the shear; height and shear along the vertical,
+   the last axis (y in 2D, z in 3D). */
 typedef enum {
   PD_SECTION_STEEL,
   PD_SECTION_TENSION,
   PD_SECTION_COMPRESSION,
+  PD_SECTION_STEEL_Y,
   PD_SECTION_TENSION_Y,
   PD_SECTION_COMPRESSION_Y,
   PD_SECTION_SHEAR,

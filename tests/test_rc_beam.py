@@ -187,8 +187,7 @@ def flexure():
         "%.0f" % first["load_N"] if first else "none", p_y))
     # at the first yield the two loads are equal, as section analysis assumes: the moment across mid-span is P a / 2
     row = next(r for r in imp.curve if r["step"] == first["step"])
-    m = -sum(row[f] * y for f, y in (("section_steel_N", 0.035), ("section_concrete_tension_N", row["section_tension_height_m"]),
-                                       ("section_concrete_compression_N", row["section_compression_height_m"])))
+    m = section_forces(row)[1]
     check(abs(m / (row["load_N"] * a / 2) - 1) < 0.01, "moment at mid-span at the first yield %.1f N m, P a / 2 = %.1f N m (1 %%)" % (m, row["load_N"] * a / 2))
     # the explicit cross-check: the same elastic stiffness before the first crack (its ramp's inertia shows earlier),
     # and the same plateau once the bar has yielded (the crack phase between oscillates about the static curve)
@@ -203,14 +202,14 @@ def flexure():
 
 
 SECTION = ["-pd_law", "elastic", "-pd_steps", "2", "-pd_lambda_max", "0.05", "-ksp_rtol", "1e-10"]
-COLUMNS = ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N", "section_tension_height_m", "section_compression_height_m",
-           "section_shear_N")
+COLUMNS = ("section_steel_N", "section_concrete_tension_N", "section_concrete_compression_N", "section_steel_height_m", "section_tension_height_m",
+           "section_compression_height_m", "section_shear_N")
 
 
 def section_forces(row):
-    """The section's columns of a curve row: the forces along x, their moment about the soffit (y = 0) and the shear."""
-    ts, tc, cc, yt, yc, v = (row[k] for k in COLUMNS)
-    return ts + tc + cc, -(ts * 0.035 + tc * yt + cc * yc), v
+    """The section's columns of a curve row: the forces along x, their moment about the soffit (height 0) and the shear."""
+    ts, tc, cc, ys, yt, yc, v = (row[k] for k in COLUMNS)
+    return ts + tc + cc, -(ts * ys + tc * yt + cc * yc), v
 
 
 def section():
@@ -225,6 +224,8 @@ def section():
     for x, r in runs.items():
         for row in r.curve[1:]:
             n, m, v = section_forces(row)
+            check(abs(row["section_steel_height_m"] - 0.035) < 1e-12, "x = %g m, step %d: the bar's force acts at %.4f m, its line" % (
+                x, row["step"], row["section_steel_height_m"]))
             check(abs(n) < 1e-8 * row["section_concrete_tension_N"], "x = %g m, step %d: forces along x sum to %.3g N (tension %.4g N)" % (
                 x, row["step"], n, row["section_concrete_tension_N"]))
             check(abs(-v / (row["load_N"] / 2) - 1) < 1e-4, "x = %g m, step %d: shear %.6g N against half the load %.6g N (1e-4)" % (
@@ -240,10 +241,10 @@ def section():
     cut = {}
     for x in (0.3, 0.7):
         row = run("cantilever", "-pd_section_x", x, "-ksp_rtol", "1e-10").curve[-1]
-        ts, tc, cc, yt, yc, v = (row[k] for k in COLUMNS)
-        check(abs(ts + tc + cc) < 1e-6 * tc and abs(v / -1e4 - 1) < 1e-6, "cantilever cut at x = %g m: forces along x sum to %.2g N (tension "
-              "%.4g N), shear %.6g N against the load -1e4 N (1e-6)" % (x, ts + tc + cc, tc, v))
-        cut[x] = -(tc * yt + cc * yc)
+        n, cut[x], v = section_forces(row)
+        tc = row["section_concrete_tension_N"]
+        check(abs(n) < 1e-6 * tc and abs(v / -1e4 - 1) < 1e-6, "cantilever cut at x = %g m: forces along x sum to %.2g N (tension "
+              "%.4g N), shear %.6g N against the load -1e4 N (1e-6)" % (x, n, tc, v))
     check(abs(abs(cut[0.3] - cut[0.7]) / (1e4 * 0.4) - 1) < 1e-6, "cantilever: moment from x = 0.3 to 0.7 m changes by %.6g N m, the "
           "load times 0.4 m (1e-6)" % (cut[0.7] - cut[0.3]))
     # two ranks sum the same forces: the plane at mid-span is where the two ranks' slabs meet, so that every bond

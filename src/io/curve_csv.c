@@ -17,8 +17,8 @@ PetscErrorCode PDCurveStart(PDRecord *rec) {
   fprintf(rec->curve,
           "step,lambda,load_N,disp_m,cmod_m,broken_bonds,newton_its,ksp_its,wall_s,external_J,stored_J,dissipated_J,kinetic_J,damped_J,"
           "yielded_segments,steel_stress_Pa,slip_m,strain_min%s\n",
-          rec->section ? ",section_steel_N,section_concrete_tension_N,section_concrete_compression_N,section_tension_height_m,"
-                         "section_compression_height_m,section_shear_N"
+          rec->section ? ",section_steel_N,section_concrete_tension_N,section_concrete_compression_N,section_steel_height_m,"
+                         "section_tension_height_m,section_compression_height_m,section_shear_N"
                        : "");
   PetscCheck(fflush(rec->curve) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Cannot write %s: %s", path, strerror(errno));
   PetscFunctionReturn(0);

@@ -658,8 +658,8 @@ PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
    once), of the force the part beyond the plane exerts through them on the part before it (small kinematics,
    the bond law's force along the bond): sum[PD_SECTION_STEEL] the bar segments' x-component, sum[PD_SECTION_TENSION] and
    [PD_SECTION_COMPRESSION] the concrete's positive and negative x-components, sum[PD_SECTION_SHEAR] the
-   vertical component of all, and into the two heights' slots the concrete's x-components times the height at
-   which the bond crosses the plane (moments, divided by the forces once summed over the ranks). Vertical is
+   vertical component of all, and into the three heights' slots the x-components times the height at which
+   the bond crosses the plane (moments, divided by the forces once summed over the ranks). Vertical is
    the last axis: y in 2D, z in 3D, as the scenes' beams stand. */
 void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECTION_N]) {
   const PDBonds   *bd  = m->bonds;
@@ -681,6 +681,7 @@ void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECT
     side = xj[0] > xi[0] ? 1 : -1; /* dir along the bond from the part before the plane to the part beyond */
     y    = xi[v] + (X - xi[0]) / (xj[0] - xi[0]) * (xj[v] - xi[v]);
     sum[PD_SECTION_STEEL] += side * gs * dir[0];
+    sum[PD_SECTION_STEEL_Y] += side * gs * dir[0] * y;
     if (gc * dir[0] * side > 0) {
       sum[PD_SECTION_TENSION] += side * gc * dir[0];
       sum[PD_SECTION_TENSION_Y] += side * gc * dir[0] * y;

@@ -39,7 +39,9 @@ PetscErrorCode PDModelSection(PDModel *m, Vec u, PetscReal out[PD_SECTION_N]) {
   PetscCall(PDModelRestoreLocal(m, &ul, &loc));
   PetscCall(MPIU_Allreduce(mine, out, PD_SECTION_N, MPIU_REAL, MPIU_SUM, m->lat->comm));
   /* moments to the heights at which the resultants act (none where nothing acts) */
-  out[PD_SECTION_TENSION_Y]     = out[PD_SECTION_TENSION] != 0 ? out[PD_SECTION_TENSION_Y] / out[PD_SECTION_TENSION] : 0;
-  out[PD_SECTION_COMPRESSION_Y] = out[PD_SECTION_COMPRESSION] != 0 ? out[PD_SECTION_COMPRESSION_Y] / out[PD_SECTION_COMPRESSION] : 0;
+  for (PetscInt k = PD_SECTION_STEEL; k <= PD_SECTION_COMPRESSION; k++) {
+    const PetscInt y = k + PD_SECTION_STEEL_Y - PD_SECTION_STEEL;
+    out[y]           = out[k] != 0 ? out[y] / out[k] : 0;
+  }
   PetscFunctionReturn(0);
 }
