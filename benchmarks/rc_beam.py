@@ -135,6 +135,27 @@ def flexure_yield(d):
     return 2 * AS * FY * section(d)["lever_arm_m"] / A
 
 
+def run_case(scene, extra):
+    """Runs one case into a fresh folder: the folder, exit code, wall and CPU time, the curve's rows, the log's last line,
+    the first row with a yielded segment (or None) and the rows with broken bonds before it."""
+    out = tempfile.mkdtemp(prefix="pdbench_")
+    with open(os.path.join(out, "log"), "w") as log:
+        code, wall, cpu, _ = run_timed([EXE, "-options_file", scene, "-pd_output_dir", out, *extra], 3600, log)
+    rows = curve_rows(out)
+    return {"out": out, "code": code, "wall": wall, "cpu": cpu, "rows": rows, "status": open(os.path.join(out, "log")).read().strip().splitlines()[-1],
+            "first": next((r for r in rows if r["yielded_segments"] > 0), None),
+            "before": [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]}
+
+
+def store(group, name, entry, section_values=None):
+    """Merges one run into the results file as it ends (another invocation may have stored runs meanwhile)."""
+    merged = load_results(JSON)
+    if section_values:
+        merged["section"] = section_values
+    merged.setdefault(group, {})[name] = entry
+    save_results(JSON, merged)
+
+
 def measure_flexure(res, names):
     """The four-point beam's runs: first yield against section analysis, the steel's stress against the cracked
     section's under the constant moment P a / 2, the plateau after the first yield, the section cut."""
@@ -142,27 +163,21 @@ def measure_flexure(res, names):
     for name, what, extra in FLEXURE:
         if name not in names:
             continue
-        out = tempfile.mkdtemp(prefix="pdbench_")
-        with open(os.path.join(out, "log"), "w") as log:
-            code, wall, cpu, _ = run_timed([EXE, "-options_file", FLEXURE_SCENE, "-pd_output_dir", out, *extra], 3600, log)
-        rows = curve_rows(out)
+        r = run_case(FLEXURE_SCENE, extra)
+        rows, first, before = r["rows"], r["first"], r["before"]
         d = bar_depth(extra)
         z = section(d)["lever_arm_m"]
-        first = next((r for r in rows if r["yielded_segments"] > 0), None)
-        before = [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]
         held = [r["load_N"] for r in rows if first and r["step"] >= first["step"]]
         moment = section_moment(first) / (first["load_N"] * A / 2) if first and "-pd_section_x" in extra else None
-        res["flexure"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "wall_s": round(wall, 1), "commit": COMMIT,
-                                "status": open(os.path.join(out, "log")).read().strip().splitlines()[-1], "P_y_N": flexure_yield(d),
+        res["flexure"][name] = {"what": what, "options": extra, "exit": r["code"], "cpu_s": round(r["cpu"], 1), "wall_s": round(r["wall"], 1),
+                                "commit": COMMIT, "status": r["status"], "P_y_N": flexure_yield(d),
                                 "first_yield_N": first["load_N"] if first else None, "first_yield_disp_m": first["disp_m"] if first else None,
                                 "steel_over_section": before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * A / 2 / (AS * z)) if before else None,
                                 "plateau_N": sum(held) / len(held) if held else None, "moment_over_Pa2_at_first_yield": moment,
                                 "peak_N": max(r["load_N"] for r in rows), "final_disp_m": rows[-1]["disp_m"], "steps": int(rows[-1]["step"]),
                                 "curve": [[r["disp_m"], r["load_N"]] for r in rows[::max(1, len(rows) // 400)]]}
         print(name, {k: v for k, v in res["flexure"][name].items() if k != "curve"})
-        merged = load_results(JSON)  # (another invocation may have stored runs meanwhile)
-        merged.setdefault("flexure", {})[name] = res["flexure"][name]
-        save_results(JSON, merged)
+        store("flexure", name, res["flexure"][name])
 
 
 def measure(names):
@@ -173,28 +188,20 @@ def measure(names):
     for name, what, extra in CASES:
         if names and name not in names:
             continue
-        out = tempfile.mkdtemp(prefix="pdbench_")
-        with open(os.path.join(out, "log"), "w") as log:
-            code, wall, cpu, _ = run_timed([EXE, "-options_file", SCENE, "-pd_output_dir", out, *extra], 3600, log)
-        rows = curve_rows(out)
+        r = run_case(SCENE, extra)
+        rows, first, before = r["rows"], r["first"], r["before"]
         k = max(range(len(rows)), key=lambda i: rows[i]["load_N"])
-        first = next((r for r in rows if r["yielded_segments"] > 0), None)
-        # the steel stress over the cracked section's at the same load, at the last row before the bar yields (or the last)
-        before = [r for r in rows if r["yielded_segments"] == 0 and r["broken_bonds"] > 0]
+        # the steel stress over the cracked section's at the same load, at the last row before the bar yields
         sec = section(bar_depth(extra))
         ratio = before[-1]["steel_stress_Pa"] / (before[-1]["load_N"] * SPAN / 4 / (AS * sec["lever_arm_m"])) if before else None
-        status = open(os.path.join(out, "log")).read().strip().splitlines()[-1]
         cut = at_section(extra, before[-1]) if before and "-pd_section_x" in extra else None
-        res["runs"][name] = {"what": what, "options": extra, "exit": code, "cpu_s": round(cpu, 1), "status": status,
+        res["runs"][name] = {"what": what, "options": extra, "exit": r["code"], "cpu_s": round(r["cpu"], 1), "status": r["status"],
                              "peak_N": rows[k]["load_N"], "disp_at_peak_m": rows[k]["disp_m"], "steel_stress_at_peak_Pa": rows[k]["steel_stress_Pa"],
                              "first_yield_N": first["load_N"] if first else None, "steel_over_section": ratio, "broken_bonds": int(rows[-1]["broken_bonds"]),
-                             "delaminated_m": delaminated(out, H - bar_depth(extra), float(extra[extra.index("-pd_dx") + 1]) if "-pd_dx" in extra else 0.01), "final_disp_m": rows[-1]["disp_m"], "P_y_N": sec["P_y_N"], "commit": COMMIT,
+                             "delaminated_m": delaminated(r["out"], H - bar_depth(extra), float(extra[extra.index("-pd_dx") + 1]) if "-pd_dx" in extra else 0.01), "final_disp_m": rows[-1]["disp_m"], "P_y_N": sec["P_y_N"], "commit": COMMIT,
                              "section_before_yield": cut}
         print(name, res["runs"][name])
-        merged = load_results(JSON)
-        merged["section"] = res["section"]
-        merged.setdefault("runs", {})[name] = res["runs"][name]
-        save_results(JSON, merged)
+        store("runs", name, res["runs"][name], res["section"])
 
 
 def status(line):
