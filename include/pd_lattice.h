@@ -50,14 +50,30 @@ typedef struct {
   PetscInt   nunused;   /* slots no bar node takes (global): hollow */
   /* bar nodes, the same table on every rank, by bar and then along the bar's chain */
   PetscInt   nbarnodes;
-  PetscInt  *bn_bar;    /* [nbarnodes] the bar */
-  PetscInt  *bn_ijk;    /* [3*nbarnodes] lattice indices of the node it shadows */
-  PetscInt  *bn_gid;    /* [nbarnodes] its global id */
-  PetscReal *bn_length; /* [nbarnodes] its share of the bar's length (m) */
-  PetscReal *bn_shift;  /* [3*nbarnodes] its place less its shadow's: PD_BAR_NODE_SHIFT dx along the bar */
-  PetscInt  *slot_node; /* [n[0]*nslot] the bar node in each slot, or -1 */
-  PetscInt  *barnode;   /* [nlocal] the bar node a local node is, or -1 (NULL without bond slip) */
+  PetscInt  *bn_bar;        /* [nbarnodes] the bar */
+  PetscInt  *bn_ijk;        /* [3*nbarnodes] lattice indices of the node it shadows */
+  PetscInt  *bn_gid;        /* [nbarnodes] its global id */
+  PetscReal *bn_length;     /* [nbarnodes] its share of the bar's length (m) */
+  PetscReal *bn_shift;      /* [3*nbarnodes] its place less its shadow's: PD_BAR_NODE_SHIFT dx along the bar; on an
+                               embedded bar its true place (an anchor's: less PD_BAR_NODE_SHIFT dx along its direction) */
+  unsigned char *bn_role;   /* [nbarnodes] PDBarRole */
+  PetscInt      *slot_node; /* [n[0]*nslot] the bar node in each slot, or -1 */
+  PetscInt      *barnode;   /* [nlocal] the bar node a local node is, or -1 (NULL without bond slip) */
 } PDLattice;
+
+/* What a node of a bar is: the bar's own (its segments join them), or on an embedded bar one of its anchors,
+   each tied to the concrete of the lattice cell the bar node lies in and linked to the bar node along one
+   direction: along the bar (the bond, slip or perfect) or across it (elastic). An embedded bar's nodes go
+   by station: the bar node, then its 1 + (dim - 1) anchors. */
+typedef enum { PD_BAR_NODE, PD_BAR_ANCHOR_ALONG, PD_BAR_ANCHOR_ACROSS1, PD_BAR_ANCHOR_ACROSS2 } PDBarRole;
+/* Nodes of bar b per station: 1 on a chain, 1 + dim embedded. */
+static inline PetscInt PDBarStride(const PDBar *b, PetscInt dim) {
+  return b->embedded ? 1 + dim : 1;
+}
+/* Whether bar b has nodes of its own (bond slip, or embedded). */
+static inline PetscBool PDBarHasNodes(const PDBar *b) {
+  return b->slip || b->embedded ? PETSC_TRUE : PETSC_FALSE;
+}
 
 /* The material of bonds that never damage: a bar's segment across a notch (coefficient 0), a perfect
    bond's interface, a no-fail zone's bonds. Its law is elastic. */

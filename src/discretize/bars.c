@@ -1,7 +1,8 @@
 /* Steel bar segments on the lattice (docs/reinforcement.md). A bar's line is laid on a chain of nodes one
    lattice offset (PDBar.step) apart, from the node nearest to its start; each pair of consecutive nodes
    of the chain within the bar's ends is a segment, an axial member of stiffness E A_s and yield force
-   f_y A_s exactly, whatever dx. */
+   f_y A_s exactly, whatever dx. An embedded bar is on nodes of its own at its true places, evenly along it,
+   whose consecutive pairs are its segments, exact alike. */
 #include "pd_lattice.h"
 
 /* As Chain below, and along the bar's line: where node k = 0 sits (t0, m from the bar's start), the step
@@ -44,6 +45,22 @@ static void Chain(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscI
   ChainAlong(lat, b, base, kmin, kmax, along);
 }
 
+/* The nodes of an embedded bar b at station st: the bar node at its place along the bar (the ends included), in
+   the x-layer of the lattice node nearest to it, which it shadows, and its anchors PD_BAR_NODE_SHIFT dx from it
+   against their directions. */
+static void EmbeddedStation(const PDLattice *lat, const PDBar *b, PetscInt st, PetscInt shadow[3], PetscReal place[3], PetscReal *share) {
+  PetscReal len = 0, h;
+  for (PetscInt c = 0; c < 3; c++) len += PetscSqr(b->line[3 + c] - b->line[c]);
+  len = PetscSqrtReal(len);
+  h   = len / (b->nstation - 1);
+  for (PetscInt c = 0; c < 3; c++) {
+    place[c] = c < lat->dim ? b->line[c] + st * h * b->dir[0][c] : 0;
+    shadow[c] =
+        c < lat->dim ? PetscMin(PetscMax((PetscInt)PetscFloorReal((place[c] - lat->origin[c]) / lat->dx + 0.5), 0), lat->n[c] - 1) : 0;
+  }
+  *share = st == 0 || st == b->nstation - 1 ? 0.5 * h : h;
+}
+
 PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
   const PetscInt nl = lat->n[1] * lat->n[2];
   PetscInt       n  = 0, *count;
@@ -51,24 +68,49 @@ PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
   PetscFunctionBeginUser;
   for (PetscInt k = 0; k < sc->nbars; k++) {
     PetscInt base[3], kmin, kmax;
-    if (!sc->bar[k].slip) continue;
+    if (!PDBarHasNodes(&sc->bar[k])) continue;
+    if (sc->bar[k].embedded) {
+      n += sc->bar[k].nstation * PDBarStride(&sc->bar[k], lat->dim);
+      continue;
+    }
     Chain(lat, &sc->bar[k], base, &kmin, &kmax);
     n += PetscMax(0, kmax - kmin + 1);
   }
   lat->nbarnodes = n;
   if (!n) PetscFunctionReturn(0);
   PetscCall(PetscMalloc5(n, &lat->bn_bar, 3 * n, &lat->bn_ijk, n, &lat->bn_gid, n, &lat->bn_length, 3 * n, &lat->bn_shift));
+  PetscCall(PetscMalloc1(n, &lat->bn_role));
   PetscCall(PetscCalloc1(lat->n[0], &count));
   n = 0;
   for (PetscInt k = 0; k < sc->nbars; k++) {
     const PDBar *b = &sc->bar[k];
     PetscInt     base[3], kmin, kmax;
     PetscReal    along[3];
-    if (!b->slip) continue;
+    if (!PDBarHasNodes(b)) continue;
+    if (b->embedded) {
+      for (PetscInt st = 0; st < b->nstation; st++) {
+        PetscInt  shadow[3];
+        PetscReal place[3], share;
+        EmbeddedStation(lat, b, st, shadow, place, &share);
+        for (PetscInt r = 0; r <= lat->dim; r++, n++) {
+          lat->bn_bar[n]    = k;
+          lat->bn_role[n]   = (unsigned char)r;
+          lat->bn_length[n] = share;
+          for (PetscInt a = 0; a < 3; a++) {
+            const PetscReal x0       = a < lat->dim ? lat->origin[a] + shadow[a] * lat->dx : 0;
+            lat->bn_ijk[3 * n + a]   = shadow[a];
+            lat->bn_shift[3 * n + a] = place[a] - x0 - (r ? PD_BAR_NODE_SHIFT * lat->dx * b->dir[r - 1][a] : 0);
+          }
+          lat->bn_gid[n] = count[shadow[0]]++;
+        }
+      }
+      continue;
+    }
     ChainAlong(lat, b, base, &kmin, &kmax, along);
     for (PetscInt c = kmin; c <= kmax; c++, n++) {
       const PetscReal t = along[0] + c * along[1], ls = along[1];
-      lat->bn_bar[n] = k;
+      lat->bn_bar[n]  = k;
+      lat->bn_role[n] = PD_BAR_NODE;
       for (PetscInt a = 0; a < 3; a++) {
         lat->bn_ijk[3 * n + a]   = base[a] + c * b->step[a];
         lat->bn_shift[3 * n + a] = PD_BAR_NODE_SHIFT * lat->dx * lat->dx * b->step[a] / ls;
@@ -125,7 +167,7 @@ PetscInt PDBarOfPair(const PDScene *sc, const PDLattice *lat, PetscInt gi, Petsc
   PDLatticeNodeIndices(lat, gi, p);
   PDLatticeNodeIndices(lat, gj, q);
   for (PetscInt k = 0; k < sc->nbars; k++)
-    if (!sc->bar[k].slip && SegmentOf(lat, &sc->bar[k], p, q)) return k;
+    if (!PDBarHasNodes(&sc->bar[k]) && SegmentOf(lat, &sc->bar[k], p, q)) return k;
   return -1;
 }
 
@@ -134,7 +176,7 @@ PetscInt PDBarHoldingNode(const PDScene *sc, const PDLattice *lat, PetscInt gid)
 
   PDLatticeNodeIndices(lat, gid, p);
   for (PetscInt k = 0; k < sc->nbars; k++)
-    if (!sc->bar[k].slip && Holds(lat, &sc->bar[k], p)) return k;
+    if (!PDBarHasNodes(&sc->bar[k]) && Holds(lat, &sc->bar[k], p)) return k;
   return -1;
 }
 
@@ -146,10 +188,12 @@ static PetscInt SegmentBar(const PDScene *sc, const PDLattice *lat, PetscInt i, 
 
   if (lat->barnode && (lat->barnode[i] >= 0 || lat->barnode[j] >= 0)) {
     const PetscInt bi = lat->barnode[i], bj = lat->barnode[j];
-    return bi >= 0 && bj >= 0 && PetscAbsInt(bi - bj) == 1 && lat->bn_bar[bi] == lat->bn_bar[bj] ? lat->bn_bar[bi] : -1;
+    if (bi < 0 || bj < 0 || lat->bn_bar[bi] != lat->bn_bar[bj] || lat->bn_role[bi] != PD_BAR_NODE || lat->bn_role[bj] != PD_BAR_NODE)
+      return -1;
+    return PetscAbsInt(bi - bj) == PDBarStride(&sc->bar[lat->bn_bar[bi]], lat->dim) ? lat->bn_bar[bi] : -1;
   }
   for (PetscInt k = 0; k < sc->nbars; k++) {
-    if (sc->bar[k].slip || !SegmentOf(lat, &sc->bar[k], p, q)) continue;
+    if (PDBarHasNodes(&sc->bar[k]) || !SegmentOf(lat, &sc->bar[k], p, q)) continue;
     /* two bars sharing a pair of nodes would give it two segments: one bar with both areas is what is meant */
     if (bar >= 0) *clash = PetscMax(*clash, bar * PD_MAX_BARS + k + 1);
     bar = k;
@@ -162,8 +206,9 @@ PetscErrorCode PDBondsSetUpBars(const PDScene *sc, const PDLattice *lat, PDBonds
 
   PetscFunctionBeginUser;
   if (!sc->nbars) PetscFunctionReturn(0);
-  for (PetscInt k = 0; k < sc->nbars; k++) {
+  for (PetscInt k = 0; k < sc->nbars; k++) { /* an embedded bar has at least two stations */
     PetscInt base[3], kmin, kmax;
+    if (sc->bar[k].embedded) continue;
     Chain(lat, &sc->bar[k], base, &kmin, &kmax);
     PetscCheck(kmax > kmin, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_line: the bar holds no two nodes of the lattice (dx = %g m)",
                sc->bar[k].option, (double)lat->dx);

@@ -64,8 +64,12 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
    cross direction either side (ties, elastic, which hold the bar node to the concrete across the bar).
    Nothing joins a bar node to concrete beyond its own node: across a crack between two bar nodes only
    the bar carries. */
-typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_LINK, PD_BARPAIR_TIE } PDBarPair;
-#define PD_MAX_BAR_PARTNERS 16 /* a bar node has at most 7; a lattice node ties to at most this many */
+typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_LINK, PD_BARPAIR_TIE, PD_BARPAIR_ANCHOR, PD_BARPAIR_CORNER } PDBarPair;
+#define PD_MAX_BAR_PARTNERS 32 /* a bar node has at most 9; a lattice node ties to at most this many */
+/* An embedded bar's anchor is tied to the corners of the lattice cell its bar node lies in, together this
+   many times as stiff as the concrete cell (E V / dx^2): along the bar the ties sit in series with the bond
+   law, whose slope at zero slip is of the cell's order, and stiffer ties would only stiffen the equations */
+#define PD_ANCHOR_STIFFNESS 10
 
 static PetscInt Gcd(PetscInt a, PetscInt b) {
   a = PetscAbsInt(a);
@@ -111,6 +115,70 @@ static PetscBool InVoid(const PDScene *sc, const PetscReal x[3]) {
   return PETSC_FALSE;
 }
 
+/* The place of bar node q: its shadow's place plus its shift. */
+static void BarNodePlace(const PDLattice *lat, PetscInt q, PetscReal x[3]) {
+  for (PetscInt c = 0; c < 3; c++) x[c] = (c < lat->dim ? lat->origin[c] + lat->bn_ijk[3 * q + c] * lat->dx : 0) + lat->bn_shift[3 * q + c];
+}
+
+/* The lattice nodes an anchor of an embedded bar ties to: the corners of the lattice cell its bar node (bar
+   node qb) lies in, as global ids, less those outside the lattice, in a void or behind a notch. The same on
+   every rank. */
+static PetscInt AnchorCorners(const PDScene *sc, const PDLattice *lat, PetscInt qb, PetscInt gid[8]) {
+  const PetscReal tol = 1e-9 * lat->dx;
+  PetscReal       p[3];
+  PetscInt        lo[3] = {0, 0, 0}, n = 0;
+
+  BarNodePlace(lat, qb, p);
+  for (PetscInt c = 0; c < lat->dim; c++) lo[c] = (PetscInt)PetscFloorReal((p[c] - lat->origin[c]) / lat->dx);
+  for (PetscInt k = 0; k < (1 << lat->dim); k++) {
+    PetscInt  ijk[3] = {0, 0, 0};
+    PetscReal x[3]   = {0, 0, 0};
+    PetscBool out = PETSC_FALSE, cut = PETSC_FALSE;
+    for (PetscInt c = 0; c < lat->dim; c++) {
+      ijk[c] = lo[c] + ((k >> c) & 1);
+      out    = out || ijk[c] < 0 || ijk[c] >= lat->n[c] ? PETSC_TRUE : PETSC_FALSE;
+      x[c]   = lat->origin[c] + ijk[c] * lat->dx;
+    }
+    if (out || InVoid(sc, x)) continue;
+    for (PetscInt m = 0; m < sc->nnotches && !cut; m++) cut = NotchCuts(&sc->notch[m], p, x, sc->dim, tol);
+    if (!cut) gid[n++] = PDLatticeGid(lat, ijk);
+  }
+  return n;
+}
+
+/* The partners of a node q of an embedded bar (PDBarRole): a bar node's are the bar nodes before and after
+   it (the segments) and its anchors, an anchor's its bar node and its corners. An anchor without corners
+   (its bar node in a void) is left out, and left without bonds, as a void's node is. */
+static PetscInt EmbeddedPartners(const PDScene *sc, const PDLattice *lat, PetscInt q, PetscInt gid[PD_MAX_BAR_PARTNERS],
+                                 PDBarPair kind[PD_MAX_BAR_PARTNERS]) {
+  const PDBar   *b      = &sc->bar[lat->bn_bar[q]];
+  const PetscInt stride = PDBarStride(b, lat->dim), r = lat->bn_role[q];
+  PetscInt       n = 0, corner[8], nc;
+
+  if (r != PD_BAR_NODE) {
+    nc = AnchorCorners(sc, lat, q - r, corner);
+    if (!nc) return 0;
+    gid[n]    = lat->bn_gid[q - r];
+    kind[n++] = PD_BARPAIR_ANCHOR;
+    for (PetscInt k = 0; k < nc; k++) {
+      gid[n]    = corner[k];
+      kind[n++] = PD_BARPAIR_CORNER;
+    }
+    return n;
+  }
+  for (PetscInt d = -stride; d <= stride; d += 2 * stride) /* segments */
+    if (q + d >= 0 && q + d < lat->nbarnodes && lat->bn_bar[q + d] == lat->bn_bar[q]) {
+      gid[n]    = lat->bn_gid[q + d];
+      kind[n++] = PD_BARPAIR_SEGMENT;
+    }
+  if (AnchorCorners(sc, lat, q, corner))
+    for (PetscInt a = 1; a < stride; a++) {
+      gid[n]    = lat->bn_gid[q + a];
+      kind[n++] = PD_BARPAIR_ANCHOR;
+    }
+  return n;
+}
+
 /* The partners of bar node q, as global ids, and their kinds. Lattice nodes outside the lattice, in a void
    or behind a notch are left out: the bar does not bond to concrete across a cut. The same on every rank. */
 static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q, PetscInt gid[PD_MAX_BAR_PARTNERS],
@@ -121,6 +189,7 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
   PetscInt        n   = 0, p[3][3], cross[2][3], np;
   PetscReal       x0[3];
 
+  if (b->embedded) return EmbeddedPartners(sc, lat, q, gid, kind);
   for (PetscInt d = -1; d <= 1; d += 2) /* segments */
     if (q + d >= 0 && q + d < lat->nbarnodes && lat->bn_bar[q + d] == lat->bn_bar[q]) {
       gid[n]  = lat->bn_gid[q + d];
@@ -159,6 +228,40 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
   return n;
 }
 
+/* The constants of a pair of an embedded bar (local nodes i, j; EmbeddedPartners): a segment's as on a chain;
+   the link of a bar node to its anchor along the bar carries, with bond slip, the bond force as on a chain,
+   and under perfect bond is elastic and as stiff as the anchor's ties; the link to an anchor across the bar
+   is elastic and as stiff as the concrete cell (E V / dx^2, the shadow's material); an anchor's ties to its
+   corners share PD_ANCHOR_STIFFNESS times that equally. A coefficient c gives a bond of length L the
+   stiffness c / L along it. */
+static void EmbeddedPairConstants(const PDScene *sc, const PDLattice *lat, PetscInt i, PetscInt j, PetscReal *coef,
+                                  unsigned char *material) {
+  const PetscInt  qi = lat->barnode[i], qj = lat->barnode[j];
+  const PetscInt  q = qi >= 0 && (qj < 0 || lat->bn_role[qi] != PD_BAR_NODE) ? qi : qj; /* the anchor, or the bar node of a segment */
+  const PDBar    *b = &sc->bar[lat->bn_bar[q]];
+  const PetscInt  r = lat->bn_role[q], shadow = PDLatticeLocalIndex(lat, PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
+  const PetscReal link = PD_BAR_NODE_SHIFT * lat->dx;
+  const PetscReal cell = sc->material[lat->material[shadow]].E * lat->cell_volume / (lat->dx * lat->dx);
+
+  if (r == PD_BAR_NODE) return; /* a segment */
+  if (qi >= 0 && qj >= 0) {     /* an anchor's link */
+    if (r == PD_BAR_ANCHOR_ALONG && b->slip) {
+      PDSlipEnvelope env;
+      PDSlipEnvelopeSetUp(b, &env);
+      *coef     = env.k0 * b->count * PETSC_PI * b->diameter * lat->bn_length[q] * link;
+      *material = PD_MATERIAL_SLIP(lat->bn_bar[q]);
+    } else
+      *coef = (r == PD_BAR_ANCHOR_ALONG ? PD_ANCHOR_STIFFNESS : 1) * cell * link;
+    return;
+  }
+  {
+    PetscInt  corner[8];
+    PetscReal L2 = 0;
+    for (PetscInt a = 0; a < 3; a++) L2 += PetscSqr(lat->x[3 * j + a] - lat->x[3 * i + a]);
+    *coef = PD_ANCHOR_STIFFNESS * cell / AnchorCorners(sc, lat, q - r, corner) * PetscSqrtReal(L2);
+  }
+}
+
 /* The constants of a pair with a bar node at one end at least (local nodes i, j): a segment has no
    concrete (its steel is set up with the other segments, bars.c); the link of bar node q carries the bond
    force tau(slip) times the bar's perimeter times q's share of the bar's length; a tie is as stiff across
@@ -170,6 +273,10 @@ static void BarPairConstants(const PDScene *sc, const PDLattice *lat, PetscInt i
 
   *coef     = 0;
   *material = PD_MATERIAL_ELASTIC;
+  if (b->embedded) {
+    EmbeddedPairConstants(sc, lat, i, j, coef, material);
+    return;
+  }
   if (lat->barnode[i] >= 0 && lat->barnode[j] >= 0) return;
   if (n2 == 0) { /* the link to the node q shadows */
     PDSlipEnvelope env;
@@ -230,7 +337,7 @@ static PetscErrorCode BarPairsByLatticeNode(const PDScene *sc, const PDLattice *
   if (!lat->barnode) PetscFunctionReturn(0);
   for (PetscInt k = 0; k < sc->nbars; k++) { /* a tie reaches no further than the ghost layers */
     PetscInt cross[2][3], nc;
-    if (!sc->bar[k].slip) continue;
+    if (!sc->bar[k].slip || sc->bar[k].embedded) continue;
     nc = CrossDirections(sc->bar[k].step, lat->dim, cross);
     for (PetscInt c = 0; c < nc; c++)
       PetscCheck(PetscAbsInt(cross[c][0]) <= lat->reach &&
@@ -248,7 +355,7 @@ static PetscErrorCode BarPairsByLatticeNode(const PDScene *sc, const PDLattice *
     if (lat->barnode[l] < 0) continue;
     np = BarPartners(sc, lat, lat->barnode[l], gid, kind);
     for (PetscInt k = 0; k < np; k++) {
-      if (kind[k] == PD_BARPAIR_SEGMENT) continue;
+      if (kind[k] == PD_BARPAIR_SEGMENT || kind[k] == PD_BARPAIR_ANCHOR) continue; /* bar node to bar node */
       (*rev)[2 * n]     = gid[k];
       (*rev)[2 * n + 1] = lat->gid[l];
       n++;

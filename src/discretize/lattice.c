@@ -210,6 +210,7 @@ PetscErrorCode PDLatticeDestroy(PDLattice *lat) {
   PetscCall(PetscFree(lat->stencil));
   PetscCall(PetscFree(lat->barnode));
   PetscCall(PetscFree5(lat->bn_bar, lat->bn_ijk, lat->bn_gid, lat->bn_length, lat->bn_shift));
+  PetscCall(PetscFree(lat->bn_role));
   PetscCall(PetscFree(lat->slot_node));
   PetscFunctionReturn(0);
 }

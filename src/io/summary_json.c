@@ -128,9 +128,11 @@ static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const
   const PDScene *sc    = m->scene;
   PetscInt       first = -1;
   PetscReal      smax = 0, slip = 0;
+  PetscInt       anchors = 0; /* nodes of embedded bars that are not the bar's own */
 
   PetscFunctionBeginUser;
   if (!sc->nbars) PetscFunctionReturn(0);
+  for (PetscInt q = 0; q < m->lat->nbarnodes; q++) anchors += m->lat->bn_role[q] != PD_BAR_NODE;
   for (PetscInt r = 0; r < rec->nrows; r++) {
     if (first < 0 && rec->rows[r].yielded > 0) first = r;
     smax = PetscMax(smax, rec->rows[r].steel_stress);
@@ -140,10 +142,12 @@ static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const
   for (PetscInt k = 0; k < sc->nbars; k++) {
     const PDBar    *b = &sc->bar[k];
     const PetscReal A = PDBarArea(b);
-    PetscCall(PetscFPrintf(
-        comm, fp,
-        "%s{\"bar\": %" PetscInt_FMT ", \"bond\": \"%s\", \"area_m2\": %.10e, \"axial_stiffness_N\": %.10e, \"yield_force_N\": %.10e",
-        k ? ", " : "", k, b->slip ? "slip" : (b->perfect ? "perfect" : "concrete"), (double)A, (double)(b->E * A), (double)(b->fy * A)));
+    PetscCall(PetscFPrintf(comm, fp,
+                           "%s{\"bar\": %" PetscInt_FMT
+                           ", \"bond\": \"%s\", \"embedded\": %s, \"area_m2\": %.10e, \"axial_stiffness_N\": %.10e, "
+                           "\"yield_force_N\": %.10e",
+                           k ? ", " : "", k, b->slip ? "slip" : (b->perfect ? "perfect" : "concrete"), b->embedded ? "true" : "false",
+                           (double)A, (double)(b->E * A), (double)(b->fy * A)));
     if (b->slip) {
       PDSlipEnvelope env;
       PDSlipEnvelopeSetUp(b, &env);
@@ -155,7 +159,8 @@ static PetscErrorCode WriteBars(MPI_Comm comm, FILE *fp, const PDModel *m, const
   PetscCall(PetscFPrintf(comm, fp,
                          "],\n    \"segments\": %" PetscInt_FMT ",\n    \"yielded_segments\": %" PetscInt_FMT
                          ",\n    \"max_steel_stress_Pa\": %.10e,\n    \"bar_nodes\": %" PetscInt_FMT ",\n    \"max_slip_m\": %.10e,\n",
-                         m->bonds->nseg_global, m->yielded, (double)smax, m->lat->nbarnodes, (double)slip));
+                         m->bonds->nseg_global, m->yielded, (double)smax, m->lat->nbarnodes - anchors, (double)slip));
+  PetscCall(PetscFPrintf(comm, fp, "    \"anchor_nodes\": %" PetscInt_FMT ",\n", anchors));
   if (first >= 0)
     PetscCall(PetscFPrintf(comm, fp, "    \"first_yield\": {\"step\": %" PetscInt_FMT ", \"load_N\": %.10e, \"disp_m\": %.10e},\n",
                            rec->rows[first].step, (double)rec->rows[first].load, (double)rec->rows[first].disp));

@@ -693,21 +693,24 @@ void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECT
   }
 }
 
-/* Largest |slip| of the owned bar nodes: their displacement along the bar less that of the node they shadow
-   (the same layer: owned too). */
+/* Largest |slip| of the owned bar nodes: their displacement along the bar less that of the node they shadow,
+   or on an embedded bar of their anchor along it (the same layer: owned too). */
 PetscReal PDModelSlipLocal(PDModel *m, const PetscScalar *u) {
   const PDLattice *lat  = m->lat;
   PetscReal        smax = 0;
   for (PetscInt i = 0; lat->barnode && i < lat->nowned; i++) {
-    const PetscInt  q = lat->barnode[i], bs = m->bs;
-    const PetscInt *st;
-    PetscInt        c;
-    PetscReal       len = 0, s = 0;
-    if (q < 0) continue;
-    st = m->scene->bar[lat->bn_bar[q]].step;
-    c  = PDLatticeLocalIndex(lat, PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
-    for (PetscInt a = 0; a < 3; a++) len += (PetscReal)(st[a] * st[a]);
-    for (PetscInt a = 0; a < bs; a++) s += st[a] * PetscRealPart(u[bs * i + a] - u[bs * c + a]);
+    const PetscInt q = lat->barnode[i], bs = m->bs;
+    const PDBar   *b;
+    PetscInt       c;
+    PetscReal      t[3], len = 0, s = 0;
+    if (q < 0 || lat->bn_role[q] != PD_BAR_NODE) continue;
+    b = &m->scene->bar[lat->bn_bar[q]];
+    c = PDLatticeLocalIndex(lat, b->embedded ? lat->bn_gid[q + PD_BAR_ANCHOR_ALONG] : PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
+    for (PetscInt a = 0; a < 3; a++) {
+      t[a] = b->embedded ? b->dir[0][a] : (PetscReal)b->step[a];
+      len += t[a] * t[a];
+    }
+    for (PetscInt a = 0; a < bs; a++) s += t[a] * PetscRealPart(u[bs * i + a] - u[bs * c + a]);
     smax = PetscMax(smax, PetscAbsReal(s) / PetscSqrtReal(len));
   }
   return smax;

@@ -39,8 +39,8 @@ static PetscErrorCode GhostedValues(Vec g, PetscReal *out) {
 static PetscBool InRegion(const PDRegion *reg, const PDLattice *lat, PetscInt i, const PDScene *sc) {
   const PetscInt q = lat->barnode ? lat->barnode[i] : -1;
   PetscReal      x[3];
-  if (lat->hollow[i] || (q >= 0) != reg->on_bars) return PETSC_FALSE;
-  for (PetscInt a = 0; a < 3; a++) x[a] = lat->x[3 * i + a] - (q >= 0 ? lat->bn_shift[3 * q + a] : 0);
+  if (lat->hollow[i] || (q >= 0) != reg->on_bars || (q >= 0 && lat->bn_role[q] != PD_BAR_NODE)) return PETSC_FALSE; /* not anchors */
+  for (PetscInt a = 0; a < 3; a++) x[a] = lat->x[3 * i + a] - (q >= 0 && !sc->bar[lat->bn_bar[q]].embedded ? lat->bn_shift[3 * q + a] : 0);
   return PDGeometryContains(&reg->where, x, sc);
 }
 
@@ -969,7 +969,11 @@ PetscInt PDModelEffects(const PDModel *m, const char *names[PD_MAX_EFFECTS]) {
       names[n++] = "steel_rupture";
       break;
     }
-  if (m->lat->nbarnodes) names[n++] = "bond_slip";
+  for (PetscInt k = 0; k < sc->nbars; k++)
+    if (sc->bar[k].slip) {
+      names[n++] = "bond_slip";
+      break;
+    }
   if (sc->kinematics == PD_KINEMATICS_FINITE) names[n++] = "geometric_nonlinearity";
   if (sc->explicit_mode) names[n++] = "inertia";
   return n;

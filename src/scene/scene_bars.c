@@ -1,4 +1,4 @@
-/* Steel bars of a scene (-pd_barK_*): straight, along a lattice direction, numbered without gaps; a bar
+/* Steel bars of a scene (-pd_barK_*): straight, along a lattice direction or embedded, numbered without gaps; a bar
    exists once its line is given. */
 #include "option_values.h"
 #include "scene_read.h"
@@ -16,9 +16,10 @@ static PetscErrorCode BarReal(PetscOptionItems *PetscOptionsObject, PDScene *sc,
 /* The lattice offset a bar's chain of nodes steps by: of the offsets within the horizon, the one closest
    in direction to the bar (the shortest of those equally close, so that an axis gives (1, 0, 0)). The
    chain keeps the bar's direction only if the bar runs along that offset: its far end may lie at most
-   half a spacing off the line the chain follows, the rounding every bar position gets. */
-static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
-  PetscReal d[3], len = 0, best = -2, off, along;
+   half a spacing off the line the chain follows, the rounding every bar position gets. A bar that does
+   not is embedded (*off: how far off, in spacings). */
+static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, PetscReal *off, PetscReal *along) {
+  PetscReal d[3], len = 0, best = -2;
   PetscInt  bn2 = 0, st[4] = {0, 0, 0, -1};
 
   PetscFunctionBeginUser;
@@ -28,7 +29,7 @@ static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
   }
   len = PetscSqrtReal(len);
   PetscCheck(len >= 1 - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             "Option %s: a bar spans at least one grid spacing (%g m) to hold a segment, this one %g m", opt, (double)sc->dx,
+             "Option %s_line: a bar spans at least one grid spacing (%g m) to hold a segment, this one %g m", b->option, (double)sc->dx,
              (double)(len * sc->dx));
   while (PDFamilyNext(sc->horizon_ratio, sc->dim, st)) {
     const PetscReal c = (st[0] * d[0] + st[1] * d[1] + st[2] * d[2]) / (len * PetscSqrtReal((PetscReal)st[3]));
@@ -38,17 +39,41 @@ static PetscErrorCode BarStep(const PDScene *sc, PDBar *b, const char *opt) {
       for (PetscInt a = 0; a < 3; a++) b->step[a] = st[a];
     }
   }
-  along = len * best;
-  off   = PetscSqrtReal(PetscMax(0, len * len - along * along));
-  PetscCheck(off <= 0.5 + 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             "Option %s: the bar does not run along a lattice direction within the horizon: the nearest, (%" PetscInt_FMT ", %" PetscInt_FMT
-             ", %" PetscInt_FMT "), would leave its far end %g m off the bar (at most dx/2 = %g m)",
-             opt, b->step[0], b->step[1], b->step[2], (double)(off * sc->dx), (double)(0.5 * sc->dx));
-  PetscCheck(along >= PetscSqrtReal((PetscReal)bn2) - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             "Option %s: the bar is shorter than one step (%g m) of its lattice direction (%" PetscInt_FMT ", %" PetscInt_FMT
-             ", %" PetscInt_FMT ") and would hold no segment",
-             opt, (double)(PetscSqrtReal((PetscReal)bn2) * sc->dx), b->step[0], b->step[1], b->step[2]);
+  *along = len * best;
+  *off   = PetscSqrtReal(PetscMax(0, len * len - *along * *along));
   PetscFunctionReturn(0);
+}
+
+/* An embedded bar's unit vectors (along it, then across: in 2D the normal in the plane, in 3D the bar crossed
+   with the axis it is least along, then the bar crossed with that) and its nodes. */
+static void EmbeddedGeometry(const PDScene *sc, PDBar *b) {
+  PetscReal *t = b->dir[0], *n1 = b->dir[1], *n2 = b->dir[2], len = 0, l1 = 0;
+  PetscInt   a = 0;
+
+  for (PetscInt c = 0; c < 3; c++) {
+    t[c] = c < sc->dim ? b->line[3 + c] - b->line[c] : 0;
+    len += t[c] * t[c];
+  }
+  len = PetscSqrtReal(len);
+  for (PetscInt c = 0; c < 3; c++) t[c] /= len;
+  b->nstation = (PetscInt)PetscCeilReal(len / sc->dx - 1e-9) + 1;
+  if (sc->dim == 2) {
+    n1[0] = -t[1];
+    n1[1] = t[0];
+    n1[2] = 0;
+    n2[0] = n2[1] = n2[2] = 0;
+    return;
+  }
+  for (PetscInt c = 1; c < 3; c++)
+    if (PetscAbsReal(t[c]) < PetscAbsReal(t[a])) a = c;
+  n1[0] = a == 0 ? 0 : (a == 1 ? -t[2] : t[1]); /* t x e_a */
+  n1[1] = a == 1 ? 0 : (a == 0 ? t[2] : -t[0]);
+  n1[2] = a == 2 ? 0 : (a == 0 ? -t[1] : t[0]);
+  for (PetscInt c = 0; c < 3; c++) l1 += n1[c] * n1[c];
+  for (PetscInt c = 0; c < 3; c++) n1[c] /= PetscSqrtReal(l1);
+  n2[0] = t[1] * n1[2] - t[2] * n1[1];
+  n2[1] = t[2] * n1[0] - t[0] * n1[2];
+  n2[2] = t[0] * n1[1] - t[1] * n1[0];
 }
 
 /* The bond-slip law of a bar (fib Model Code 2010, Sec. 6.1.1, pull-out, good bond): tau_max from f_cm, which
@@ -89,7 +114,7 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
   PDBar    *b = &sc->bar[k];
   char      opt[64];
   PetscInt  n = 6, d = sc->dim;
-  PetscReal v[6] = {0, 0, 0, 0, 0, 0};
+  PetscReal v[6] = {0, 0, 0, 0, 0, 0}, off, along;
   PetscBool set;
 
   PetscFunctionBeginUser;
@@ -107,7 +132,7 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
     PetscCheck(lo >= sc->domain[a] - 1e-9 * sc->dx && hi <= sc->domain[3 + a] + 1e-9 * sc->dx, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
                "Option %s: the bar leaves the domain -pd_domain along %c", opt, (char)('x' + a));
   }
-  PetscCall(BarStep(sc, b, opt));
+  PetscCall(BarStep(sc, b, &off, &along));
   PetscCall(BarReal(PetscOptionsObject, sc, b, "_diameter", &b->diameter));
   PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_diameter", b->option));
   PetscCheck(b->diameter > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option %s is required for a bar", opt);
@@ -124,6 +149,35 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
     PetscCall(PDOptionEnum(PetscOptionsObject, sc, opt, &bond, NULL));
     b->perfect = bond == 1 ? PETSC_TRUE : PETSC_FALSE;
     b->slip    = bond == 2 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  /* a bar off the lattice directions can only be embedded; one along them may be */
+  PetscCall(PetscSNPrintf(opt, sizeof opt, "%s_embedded", b->option));
+  PetscCall(PDOptionBool(PetscOptionsObject, sc, opt, &b->embedded, &set));
+  PetscCheck(!set || b->embedded || off <= 0.5 + 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s false: the bar does not run along a lattice direction within the horizon (its far end lies %g m off the "
+             "nearest one), so it can only be embedded",
+             opt, (double)(off * sc->dx));
+  b->embedded = b->embedded || off > 0.5 + 1e-9 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCheck(!b->embedded || sc->kinematics == PD_KINEMATICS_SMALL, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_line: an embedded bar needs -pd_kinematics small: its links to the concrete are 1e-4 dx long, and under finite "
+             "kinematics a sideways move would read as slip",
+             b->option);
+  PetscCheck(!b->embedded || b->slip || b->perfect, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             off > 0.5 + 1e-9
+                 ? "Option %s_line: the bar does not run along a lattice direction within the horizon (its far end lies %g m "
+                   "off the nearest one, (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT
+                   ")), so it is embedded on nodes of its own, which needs %s_bond slip or perfect"
+                 : "Option %s_embedded: an embedded bar is on nodes of its own (the far end %g m off the chain, (%" PetscInt_FMT
+                   ", %" PetscInt_FMT ", %" PetscInt_FMT ")), which needs %s_bond slip or perfect",
+             b->option, (double)(off * sc->dx), b->step[0], b->step[1], b->step[2], b->option);
+  if (b->embedded)
+    EmbeddedGeometry(sc, b);
+  else {
+    const PetscReal ls = PetscSqrtReal((PetscReal)(b->step[0] * b->step[0] + b->step[1] * b->step[1] + b->step[2] * b->step[2]));
+    PetscCheck(along >= ls - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+               "Option %s_line: the bar is shorter than one step (%g m) of its lattice direction (%" PetscInt_FMT ", %" PetscInt_FMT
+               ", %" PetscInt_FMT ") and would hold no segment; embed it (%s_embedded)",
+               b->option, (double)(ls * sc->dx), b->step[0], b->step[1], b->step[2], b->option);
   }
   if (b->slip) PetscCall(ReadSlip(PetscOptionsObject, sc, b));
   PetscCheck(b->rupture == 0 || b->rupture > b->fy / b->E, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,

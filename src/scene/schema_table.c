@@ -309,9 +309,10 @@ const PDOptionSpec PDOptionSchema[] = {
      .type     = PD_OPTION_REALS,
      .unit     = "m",
      .def_note = "required",
-     .help     = "Steel bar: its end points x,y,z,x,y,z (x,y,x,y in 2D), along a lattice direction within the horizon (an axis, a "
-                 "diagonal, (2,1,0), ...; the far end at most dx/2 off it); laid on the chain of nodes one such offset apart from the node "
-                 "nearest to its start, whose consecutive pairs carry the bar's segments"},
+     .help     = "Steel bar: its end points x,y,z,x,y,z (x,y,x,y in 2D). Along a lattice direction within the horizon (an axis, a "
+                 "diagonal, (2,1,0), ...; the far end at most dx/2 off it) it is laid on the chain of nodes one such offset apart from the "
+                 "node nearest to its start, whose consecutive pairs carry the bar's segments; in any other direction it is embedded "
+                 "(_embedded)"},
     {.name     = "_diameter",
      .family   = BAR,
      .type     = PD_OPTION_REAL,
@@ -360,6 +361,13 @@ const PDOptionSpec PDOptionSchema[] = {
                "follow the concrete law and may crack along the bar), perfect (those bonds stay elastic, the thesis' choice; across a crack "
                "they carry tension too) or slip (the bar on nodes of its own, tied to the concrete by the fib Model Code 2010 bond "
                "stress-slip law)"},
+    {.name     = "_embedded",
+     .family   = BAR,
+     .type     = PD_OPTION_BOOL,
+     .def_note = "false; true off the lattice directions",
+     .help     = "Embedded bar: on nodes of its own at its true places (ceil(length/dx) + 1 evenly along it), each tied to the concrete "
+                 "of its lattice cell through anchor nodes, so that the bar runs in any direction; needs _bond slip or perfect "
+                 "(docs/reinforcement.md)"},
     {.name     = "_fcm",
      .family   = BAR,
      .type     = PD_OPTION_REAL,
