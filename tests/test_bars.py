@@ -1,5 +1,5 @@
 """Steel bars (-pd_barK_*): axial stiffness and yield force as built, a bar holding a cut prism, MPI.
-Usage: test_bars.py axial|diagonal|notch|mpi|restart|stuttgart|pullout"""
+Usage: test_bars.py axial|diagonal|notch|mpi|restart|stuttgart|pullout|embedded"""
 import math
 import os
 import sys
@@ -69,7 +69,7 @@ def diagonal():
         s = r.summary["bars"]
         check(s["segments"] == nseg and s["yielded_segments"] == nseg, "%s: %d segments, all yielded" % (name, s["segments"]))
         check(worst < 1e-4, "%s: force within %.1e of the nominal bar's over %d steps (1e-4)" % (name, worst, len(r.curve)))
-    # a bar between lattice directions is refused, naming its option
+    # a bar between lattice directions is embedded, which the default bond (concrete) cannot be: refused, naming its option
     r = run("bar_prism", "-pd_bar0_line", "0,0.05,0.05,0.4,0.09,0.05", expect_ok=False)
     check(r.returncode == 2 and "-pd_bar0_line" in r.stderr and "lattice direction" in r.stderr, "a bar off the lattice directions is bad input")
 
@@ -161,6 +161,24 @@ def bond_stress(s, fcm=38e6, d=0.012):
     return tmax - 0.6 * tmax * (min(s, s3) - s2) / (s3 - s2)
 
 
+def follows_bond_law(r, name, L=0.06, d=0.012):
+    """Checks a pull-out's force against tau(s) pi d L (the bar bonded over L): on the plateau (every node of the bar
+    past s1, exact but for the solves: 1e-5 of the peak), on the fall (1 %), on the rise from 0.2 mm (at least 0.9 of it,
+    the loaded end slipping more than the mean) and at the peak (1e-5). Returns tau_max pi d L."""
+    top = bond_stress(1.5e-3) * math.pi * d * L
+    for lo, hi, tol, what in ((1.1e-3, 1.9e-3, 1e-5, "plateau"), (2.5e-3, 6e-3, 0.01, "fall")):
+        rows = [x for x in r.curve if lo <= x["slip_m"] <= hi]
+        worst = max(abs(x["load_N"] - bond_stress(x["slip_m"]) * math.pi * d * L) / top for x in rows)
+        check(len(rows) >= 5 and worst < tol, "%s%s: %d rows, force against tau(s) pi d L within %.2g of the peak (%.2g)" % (
+            name, what, len(rows), worst, tol))
+    rows = [x for x in r.curve if 2e-4 <= x["slip_m"] <= 1e-3]
+    low = min(x["load_N"] / (bond_stress(x["slip_m"]) * math.pi * d * L) for x in rows)
+    check(len(rows) >= 3 and 0.9 < low <= 1 + 1e-9, "%srise: force at least %.3f of tau(s) pi d L from 0.2 mm (0.9)" % (name, low))
+    peak = max(x["load_N"] for x in r.curve)
+    check(abs(peak - top) < 1e-5 * top, "%speak %.1f N = tau_max pi d L = %.1f N (1e-5)" % (name, peak, top))
+    return top
+
+
 def pullout():
     # options/pullout.opts: a 12 mm bar bonded over L = 60 mm in elastic concrete, pulled by 6 mm. The force
     # against the slip of the loaded end follows tau(s) pi d L where the bond stress is uniform: on the
@@ -170,20 +188,11 @@ def pullout():
     # past a slip of 0.2 mm (measured 5 %). A restart from a checkpoint. The same curve on two ranks, which split the bar, to 2.5 mm in
     # 100 increments (at 60 the first increment is cut on one rank count and not on the other, and the
     # curves then have different points); the solves' tolerance allows 1e-6 of the increment's load.
-    L, d = 0.06, 0.012
     r = run("pullout")
     s = r.summary
-    top = bond_stress(1.5e-3) * math.pi * d * L
     check(s["converged"] and "bond_slip" in s["effects"] and s["bars"]["list"][0]["bond"] == "slip" and s["bars"]["bar_nodes"] == 6,
           "pulled out to %.1f mm, 6 bar nodes, effect bond_slip" % (1e3 * s["bars"]["max_slip_m"]))
-    for lo, hi, tol, what in ((1.1e-3, 1.9e-3, 1e-5, "plateau"), (2.5e-3, 6e-3, 0.01, "fall")):
-        rows = [x for x in r.curve if lo <= x["slip_m"] <= hi]
-        worst = max(abs(x["load_N"] - bond_stress(x["slip_m"]) * math.pi * d * L) / top for x in rows)
-        check(len(rows) >= 5 and worst < tol, "%s: %d rows, force against tau(s) pi d L within %.2g of the peak (%.2g)" % (what, len(rows), worst, tol))
-    rows = [x for x in r.curve if 2e-4 <= x["slip_m"] <= 1e-3]
-    low = min(x["load_N"] / (bond_stress(x["slip_m"]) * math.pi * d * L) for x in rows)
-    check(len(rows) >= 3 and 0.9 < low <= 1 + 1e-9, "rise: force at least %.3f of tau(s) pi d L from 0.2 mm (0.9)" % low)
-    check(abs(max(x["load_N"] for x in r.curve) - top) < 1e-5 * top, "peak %.1f N = tau_max pi d L = %.1f N (1e-5)" % (max(x["load_N"] for x in r.curve), top))
+    top = follows_bond_law(r, "")
     # path following stopped at load factor 0.5 and gone on from its checkpoint retraces the whole run, slips included
     arc = ["-pd_control", "arclength"]
     whole = run("pullout", *arc).curve
@@ -192,12 +201,68 @@ def pullout():
     worst = max(max(abs(x[k] - y[k]) / max(abs(z[k]) for z in whole) for k in ("load_N", "slip_m")) for x, y in zip(whole, again))
     check(1 < len(half.curve) < len(whole) == len(again) and worst < 1e-8, "restart at step %d: the %d steps retraced, slips too, largest "
           "difference %.1e (1e-8)" % (len(half.curve), len(whole), worst))
-    short = ["-pd_steps", "100", "-pd_region1_displacement", "-0.0025,0,0"]
+    short = ["-pd_steps", "100", "-pd_region1_displacement", "-0.0025,0,0", "-pd_domain", "0,0,0,0.08,0.15,0.15"]  # 8 layers: split at 40 mm
     a, b = run("pullout", *short).curve, run("pullout", *short, ranks=2).curve
     worst = max(abs(x["load_N"] - y["load_N"]) / top for x, y in zip(a, b))
     check(len(a) == len(b) and worst < 1e-5, "2 ranks: the same %d steps, largest load difference %.1e of the peak (1e-5)" % (len(b), worst))
 
 
+def embedded():
+    # Embedded bars (on nodes of their own at their true places, tied to the concrete through anchor nodes), in
+    # directions no lattice has. In soft concrete (E = 1e3 Pa) a bar held at one end and pulled along its line at the
+    # other carries E A_s eps, then f_y A_s and the hardening branch, as the nominal bar at any dx: in plane stress at
+    # 33.7 degrees (dx = 20 and 10 mm) and in 3D along (3, 1, 2) (1e-5: the soft concrete carries a few 1e-6; a
+    # factor, as the contrast of steel and soft concrete defeats the iterative solves). Its segments are
+    # ceil(L / dx), every one yielded.
+    common = ["-pd_name", "embedded", "-pd_E", "1e3", "-pd_law", "elastic", "-pd_bar0_diameter", "0.012", "-pd_bar0_hardening", "0.02",
+              "-pd_bar0_bond", "perfect", "-pd_region0_nodes", "bars", "-pd_region0_kind", "support", "-pd_region1_nodes", "bars",
+              "-pd_region1_kind", "displacement", "-pd_steps", "10", "-ksp_type", "preonly", "-pc_type", "lu"]
+    u = [c / math.sqrt(14) for c in (3, 1, 2)]
+    far = [0.03 + 0.3 * u[0], 0.05 + 0.3 * u[1], 0.04 + 0.3 * u[2]]
+    plane = ["-pd_model", "plane_stress", "-pd_thickness", "0.1", "-pd_domain", "0,0,0.4,0.3", "-pd_bar0_line", "0.05,0.05,0.35,0.25",
+             "-pd_region0_box", "0.05,0.05,0.05,0.05", "-pd_region0_dofs", "x,y", "-pd_region1_box", "0.35,0.25,0.35,0.25",
+             "-pd_region1_dofs", "x,y", "-pd_region1_displacement", "0.003,0.002"]
+    space = ["-pd_domain", "0,0,0,0.4,0.2,0.3", "-pd_bar0_line", "0.03,0.05,0.04,%r,%r,%r" % tuple(far), "-pd_region0_box",
+             "0.03,0.05,0.04,0.03,0.05,0.04", "-pd_region0_dofs", "x,y,z", "-pd_region1_box", "%r,%r,%r,%r,%r,%r" % tuple(far + far),
+             "-pd_region1_dofs", "x,y,z", "-pd_region1_displacement", "%r,%r,%r" % tuple(0.003 * c for c in u)]
+    for name, geo, length, dx in (("plane stress, 33.7 degrees", plane, math.hypot(0.3, 0.2), 0.02),
+                                  ("plane stress, 33.7 degrees", plane, math.hypot(0.3, 0.2), 0.01), ("3d (3, 1, 2)", space, 0.3, 0.025)):
+        r = run(None, *(common + geo + ["-pd_dx", repr(dx)]))
+        worst = max(rel(x["load_N"], expected(x["disp_m"] / length, 0.02)) for x in r.curve)
+        s = r.summary["bars"]
+        nseg = math.ceil(length / dx)
+        check(s["list"][0]["embedded"] and s["segments"] == nseg and s["yielded_segments"] == nseg and s["bar_nodes"] == nseg + 1,
+              "%s, dx = %g m: embedded, %d segments (ceil(L / dx)), all yielded, %d anchors" % (name, dx, s["segments"], s["anchor_nodes"]))
+        check(worst < 1e-5, "%s, dx = %g m: force within %.1e of the nominal bar's over %d steps (1e-5)" % (name, dx, worst, len(r.curve)))
+    # Pulled out of elastic concrete, an embedded bar follows the bond law as the bar on its chain of nodes does
+    # (follows_bond_law): along the axis (options/pullout.opts embedded) and along (0.8, 0.36, 0.48)
+    # (options/pullout_inclined.opts); the inclined one in a shorter block on two ranks, which split it, gives the same
+    # curve as on one (1e-5 of the peak, as for the chain)
+    r = run("pullout", "-pd_bar0_embedded", "true")
+    check(r.summary["bars"]["list"][0]["embedded"] and r.summary["bars"]["bar_nodes"] == 7, "along x, embedded: 7 bar nodes")
+    follows_bond_law(r, "along x, embedded: ")
+    r = run("pullout_inclined")
+    s = r.summary
+    check(s["converged"] and "bond_slip" in s["effects"] and s["bars"]["list"][0]["embedded"], "along (0.8, 0.36, 0.48): embedded, bond slip")
+    top = follows_bond_law(r, "along (0.8, 0.36, 0.48): ")
+    # 8 layers: two ranks split the bar and its anchors at x = 40 mm. On one rank block ICC(0) fails on this tangent with
+    # a zero pivot and the run goes on with GAMG, which the failed state of the block Jacobi PC, kept until it was
+    # cleared, stopped at every solve
+    short = ["-pd_domain", "0,0,0,0.08,0.15,0.15"]
+    one, two = run("pullout_inclined", *short), run("pullout_inclined", *short, ranks=2)
+    check("going on with GAMG" in one.stdout and one.summary["converged"], "one rank: block ICC(0) failed, the run went on with GAMG and completed")
+    worst = max(abs(x["load_N"] - y["load_N"]) / top for x, y in zip(one.curve, two.curve))
+    check(len(two.curve) == len(one.curve) and worst < 1e-5, "2 ranks split the bar: the same %d steps, largest load difference %.1e of the "
+          "peak (1e-5)" % (len(two.curve), worst))
+    # bad input: an off-lattice bar without a bond it can be embedded with, one said not to be embedded, and one under
+    # finite kinematics; each names its option
+    for extra, opt, what in ((["-pd_bar0_bond", "concrete"], "-pd_bar0_line", "slip or perfect"),
+                             (["-pd_bar0_embedded", "false"], "-pd_bar0_embedded", "only be embedded"),
+                             (["-pd_kinematics", "finite"], "-pd_bar0", "kinematics")):
+        bad = run("pullout_inclined", *extra, expect_ok=False)
+        check(bad.returncode == 2 and opt in bad.stderr and what in bad.stderr, "bad input (exit %d): %s" % (bad.returncode, bad.stderr.strip()[:160]))
+
+
 if __name__ == "__main__":
     {"axial": axial, "diagonal": diagonal, "notch": notch, "mpi": mpi, "restart": restart, "stuttgart": stuttgart,
-     "pullout": pullout}[sys.argv[1]]()
+     "pullout": pullout, "embedded": embedded}[sys.argv[1]]()

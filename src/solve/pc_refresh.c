@@ -154,6 +154,7 @@ PetscErrorCode PDPCForgetFailed(KSP ksp) {
   PetscCall(PetscObjectReference((PetscObject)A));
   PetscCall(PetscObjectReference((PetscObject)P));
   PetscCall(PCReset(pc));
+  PetscCall(PCSetFailedReason(pc, PC_NOERROR)); /* which PCReset keeps: a PC of another type would report it at every solve */
   PetscCall(KSPSetOperators(ksp, A, P));
   PetscCall(MatDestroy(&A));
   PetscCall(MatDestroy(&P));
