@@ -74,6 +74,12 @@ FLEXURE = [
     ("flexure_default", "default path", ["-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
     ("flexure_explicit", "explicit, ramp 0.24 s", ["-pd_lambda_max", "0.5", "-pd_mode", "explicit", "-pd_ramp_time", "0.24"]),
     ("flexure_dx5", "path following as the first, dx = 5 mm, d = 112.5 mm", PATH + DX5 + ["-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
+    # an embedded bar (on nodes of its own at its true places, docs/reinforcement.md): on the scene's node line, and at a
+    # depth between two node lines, where a bar on its chain of nodes cannot lie
+    ("flexure_embedded", "path following as the first, the bar embedded", PATH + ["-pd_bar0_embedded", "true", "-pd_lambda_max", "0.5",
+                                                                                   "-pd_section_x", "0.65"]),
+    ("flexure_embedded_d120", "path following as the first, the bar embedded at d = 120 mm, between two node lines",
+     PATH + ["-pd_bar0_embedded", "true", "-pd_bar0_line", "0,0.03,1.3,0.03", "-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
 ]
 
 
