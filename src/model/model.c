@@ -83,7 +83,8 @@ static PetscErrorCode SetupConstraints(PDModel *m) {
   PetscCall(MPIU_Allreduce(count, gcount, PD_MAX_REGIONS, MPIU_INT, MPI_SUM, lat->comm));
   for (PetscInt r = 0; r < sc->nregions; r++)
     PetscCheck(!sc->region[r].on_bars || lat->nbarnodes, lat->comm, PETSC_ERR_USER_INPUT,
-               "Option %s_nodes bars: the scene has no bar with bond slip (-pd_barK_bond slip), whose nodes it would select",
+               "Option %s_nodes bars: the scene has no bar with nodes of its own (-pd_barK_bond slip, or embedded), whose nodes it "
+               "would select",
                sc->region[r].option);
   for (PetscInt r = 0; r < sc->nregions; r++)
     PetscCheck(gcount[r] > 0, lat->comm, PETSC_ERR_USER_INPUT, "Option %s_%s: the region contains no %s (outside voids)",

@@ -260,8 +260,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .type   = PD_OPTION_ENUM,
      .values = Nodes,
      .def    = "concrete",
-     .help   = "Which nodes in the region it acts on: the concrete's, or the nodes of bars with bond slip (to pull a bar, or to hold "
-               "its end)"},
+     .help   = "Which nodes in the region it acts on: the concrete's, or the nodes of bars with nodes of their own (bond slip, or "
+               "embedded; not their anchors), to pull a bar or to hold its end"},
     {.name     = "_dofs",
      .family   = REGION,
      .type     = PD_OPTION_STRING,
