@@ -254,6 +254,15 @@ def embedded():
     worst = max(abs(x["load_N"] - y["load_N"]) / top for x, y in zip(one.curve, two.curve))
     check(len(two.curve) == len(one.curve) and worst < 1e-5, "2 ranks split the bar: the same %d steps, largest load difference %.1e of the "
           "peak (1e-5)" % (len(two.curve), worst))
+    # path following stopped at load factor 0.5 and gone on from its checkpoint retraces the run, slips included, as for
+    # the chain (1e-8): the anchors are nodes of the checkpoint's layout like any other
+    arc = ["-pd_control", "arclength"]
+    whole = run("pullout_inclined", *arc).curve
+    half = run("pullout_inclined", *arc, "-pd_lambda_max", "0.5", "-pd_steps", "30", "-pd_checkpoint_every", "100")
+    again = run("pullout_inclined", *arc, "-pd_restart", os.path.join(half.dir, "checkpoint.h5")).curve
+    worst = max(max(abs(x[k] - y[k]) / max(abs(z[k]) for z in whole) for k in ("load_N", "slip_m")) for x, y in zip(whole, again))
+    check(1 < len(half.curve) < len(whole) == len(again) and worst < 1e-8, "restart at step %d: the %d steps retraced, largest difference "
+          "%.1e (1e-8)" % (len(half.curve), len(whole), worst))
     # bad input: an off-lattice bar without a bond it can be embedded with, one said not to be embedded, and one under
     # finite kinematics; each names its option
     for extra, opt, what in ((["-pd_bar0_bond", "concrete"], "-pd_bar0_line", "slip or perfect"),
