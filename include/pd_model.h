@@ -171,6 +171,7 @@ static inline PetscReal PDModelBondStrength(const PDModel *m, PetscInt e) {
 }
 PetscErrorCode PDModelEnergy(PDModel *, Vec u, PetscReal *stored, PetscReal *dissipated);
 PetscErrorCode PDModelNodalDamage(PDModel *, Vec damage);
+PetscErrorCode PDModelBarFields(PDModel *, Vec u, Vec stress, Vec plastic, Vec slip);
 /* Forces across the section plane -pd_section_x at u: the bars', the concrete's in tension and in compression
    (negative) along x, the heights at which the three act, and the shear; height and shear along the vertical,
    the last axis (y in 2D, z in 3D). */

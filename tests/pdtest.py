@@ -43,6 +43,15 @@ class Run:
             key = steps[-1] if step is None else "displacement_%06d" % step
             return np.array(g["coordinates"]), np.array(g[key]), np.array(g[key.replace("displacement", "damage")])
 
+    def field(self, name, step=None):
+        """A scalar field of fields.h5 (damage, steel_stress, ...) at a step (the last written by default)."""
+        import h5py
+        import numpy as np
+        with h5py.File(os.path.join(self.dir, "fields.h5"), "r") as f:
+            g = f["fields"]
+            key = sorted(k for k in g if k.startswith(name + "_"))[-1] if step is None else "%s_%06d" % (name, step)
+            return np.array(g[key])
+
 
 def run(scene_name, *args, ranks=1, expect_ok=True, outdir=None):
     """Runs a scene with extra options; returns a Run. Output goes to a fresh directory."""

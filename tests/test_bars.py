@@ -86,6 +86,14 @@ def notch():
         check(rel(c[-1]["load_N"], FY * AREA) < 1e-9 and c[-1]["yielded_segments"] >= 1, "the last step holds at the yield force, %d segment(s) yielded"
               % c[-1]["yielded_segments"])
         check(abs(c[-1]["steel_stress_Pa"] - FY) < 1e-6 * FY, "largest steel stress %.6e Pa, f_y" % c[-1]["steel_stress_Pa"])
+        # the fields: the segment across the cut yields alone, so its two nodes have the largest stress, f_y, and
+        # the only plastic strain, which is the plastic elongation over the segment's length
+        sigma, plastic = r.field("steel_stress"), r.field("steel_plastic_strain")
+        yielded = plastic > 0
+        k = c[0]["load_N"] / c[0]["disp_m"]
+        check(yielded.sum() == 2 and abs(sigma[yielded] - FY).max() < 1e-6 * FY and abs(sigma).max() < FY * (1 + 1e-9)
+              and rel(plastic[yielded].max(), (c[-1]["disp_m"] - FY * AREA / k) / float(dx)) < 1e-6,
+              "fields: 2 nodes yielded at f_y, plastic strain %.4e = (u - F_y / K) / dx (1e-6)" % plastic.max())
         # the system is linear but for the one segment, so at the end it stores F_y^2 / 2K (K the initial
         # stiffness) and the segment has dissipated F_y times its plastic elongation, u - F_y / K
         k = c[0]["load_N"] / c[0]["disp_m"]
@@ -244,6 +252,15 @@ def embedded():
     r = run("pullout_inclined")
     s = r.summary
     check(s["converged"] and "bond_slip" in s["effects"] and s["bars"]["list"][0]["embedded"], "along (0.8, 0.36, 0.48): embedded, bond slip")
+    # the fields: the largest slip is the summary's, at the loaded end; at the free end the bar's last segment carries
+    # what the last node's bond carries, tau(slip) pi d times half a station (10 mm), by that node's equilibrium (1e-4:
+    # Newton leaves the nodes out of balance by up to about 1e-6 of the load, which is 12 times this node's force)
+    slip, sigma, x = r.field("slip"), r.field("steel_stress"), r.fields()[0]
+    far = ((x - [0.048, 0.0716, 0.0788]) ** 2).sum(axis=1).argmin()
+    bond = bond_stress(abs(slip[far])) * math.pi * 0.012 * 0.005
+    check(rel(abs(slip).max(), s["bars"]["max_slip_m"]) < 1e-9 and rel(sigma[far] * AREA, bond) < 1e-4,
+          "fields: largest slip %.4f mm (the summary's); at the free end the steel carries %.1f N, its bond %.1f N (1e-4)" % (
+              1e3 * abs(slip).max(), sigma[far] * AREA, bond))
     top = follows_bond_law(r, "along (0.8, 0.36, 0.48): ")
     # 8 layers: two ranks split the bar and its anchors at x = 40 mm. On one rank block ICC(0) fails on this tangent with
     # a zero pivot and the run goes on with GAMG, which the failed state of the block Jacobi PC, kept until it was

@@ -1,4 +1,5 @@
-/* fields.h5 through PETSc's HDF5 viewer (node positions once, displacement and damage per chosen step)
+/* fields.h5 through PETSc's HDF5 viewer (node positions once, displacement, damage and on scenes with bars their
+   stress, plastic strain and slip per chosen step)
    and fields.xmf, the XDMF index that lets ParaView open them as a point cloud over time. */
 #include "pd_io.h"
 #include "pd_log.h"
@@ -10,6 +11,37 @@ static PetscErrorCode CreateNodeVec(const PDModel *m, PetscInt bs, Vec *v) {
   PetscCall(VecSetSizes(*v, bs * m->lat->nowned, PETSC_DECIDE));
   PetscCall(VecSetBlockSize(*v, bs));
   PetscCall(VecSetFromOptions(*v));
+  PetscFunctionReturn(0);
+}
+
+/* The datasets of each step besides displacement (a vector) and damage: those of the bars on scenes with bars
+   (PDModelBarFields), slip where a bar has nodes of its own. */
+static PetscInt StepScalars(const PDModel *m, const char *names[4]) {
+  PetscInt n = 0;
+  names[n++] = "damage";
+  if (m->scene->nbars) {
+    names[n++] = "steel_stress";
+    names[n++] = "steel_plastic_strain";
+  }
+  if (m->lat->nbarnodes) names[n++] = "slip";
+  return n;
+}
+
+static PetscErrorCode WriteBarFields(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
+  const char *names[4];
+  Vec         v[3] = {NULL, NULL, NULL};
+  char        name[64];
+  PetscInt    n = StepScalars(m, names) - 1;
+
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < n; k++) PetscCall(CreateNodeVec(m, 1, &v[k]));
+  PetscCall(PDModelBarFields(m, u, v[0], v[1], v[2]));
+  for (PetscInt k = 0; k < n; k++) {
+    PetscCall(PetscSNPrintf(name, sizeof name, "%s_%06" PetscInt_FMT, names[k + 1], step));
+    PetscCall(PetscObjectSetName((PetscObject)v[k], name));
+    PetscCall(VecView(v[k], rec->h5));
+    PetscCall(VecDestroy(&v[k]));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -53,6 +85,7 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
   PetscCall(VecView(d, rec->h5));
   PetscCall(VecDestroy(&d));
   PetscCall(VecDestroy(&v3));
+  if (m->scene->nbars) PetscCall(WriteBarFields(m, rec, step, u));
   PetscCall(PetscRealloc(sizeof(PetscInt) * (rec->nfield_steps + 1), &rec->field_steps));
   rec->field_steps[rec->nfield_steps++] = step;
   PetscCall(PetscTime(&t1));
@@ -62,10 +95,12 @@ PetscErrorCode PDFieldsWrite(PDModel *m, PDRecord *rec, PetscInt step, Vec u) {
 }
 
 PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec) {
-  MPI_Comm comm = m->lat->comm;
-  FILE    *fp;
-  char     path[PETSC_MAX_PATH_LEN], *name;
-  PetscInt N = m->lat->nglobal;
+  MPI_Comm    comm = m->lat->comm;
+  FILE       *fp;
+  char        path[PETSC_MAX_PATH_LEN], *name;
+  PetscInt    N = m->lat->nglobal;
+  const char *scalars[4];
+  PetscInt    nscalar = StepScalars(m, scalars);
 
   PetscFunctionBeginUser;
   if (!rec->h5) PetscFunctionReturn(0); /* no step converged: no fields */
@@ -93,11 +128,12 @@ PetscErrorCode PDFieldsFinish(PDModel *m, PDRecord *rec) {
                      " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/displacement_%06" PetscInt_FMT
                      "</DataItem></Attribute>\n",
                      N, s));
-    PetscCall(PetscFPrintf(comm, fp,
-                           "    <Attribute Name=\"damage\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"%" PetscInt_FMT
-                           "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/damage_%06" PetscInt_FMT
-                           "</DataItem></Attribute>\n",
-                           N, s));
+    for (PetscInt a = 0; a < nscalar; a++)
+      PetscCall(PetscFPrintf(comm, fp,
+                             "    <Attribute Name=\"%s\" AttributeType=\"Scalar\" Center=\"Node\"><DataItem Dimensions=\"%" PetscInt_FMT
+                             "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/%s_%06" PetscInt_FMT
+                             "</DataItem></Attribute>\n",
+                             scalars[a], N, scalars[a], s));
     PetscCall(PetscFPrintf(comm, fp, "   </Grid>\n"));
   }
   PetscCall(PetscFPrintf(comm, fp, "  </Grid>\n </Domain>\n</Xdmf>\n"));

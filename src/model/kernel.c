@@ -693,27 +693,56 @@ void PDModelSectionLocal(PDModel *m, const PetscScalar *u, PetscReal sum[PD_SECT
   }
 }
 
-/* Largest |slip| of the owned bar nodes: their displacement along the bar less that of the node they shadow,
-   or on an embedded bar of their anchor along it (the same layer: owned too). */
+/* The slip of owned bar node i (bar node q, PD_BAR_NODE): its displacement along the bar less that of the node it
+   shadows, or on an embedded bar of its anchor along it (the same layer: local too). */
+static PetscReal BarNodeSlip(const PDModel *m, const PetscScalar *u, PetscInt i, PetscInt q) {
+  const PDLattice *lat = m->lat;
+  const PDBar     *b   = &m->scene->bar[lat->bn_bar[q]];
+  const PetscInt c = PDLatticeLocalIndex(lat, b->embedded ? lat->bn_gid[q + PD_BAR_ANCHOR_ALONG] : PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
+  PetscReal      t[3], len = 0, s = 0;
+  for (PetscInt a = 0; a < 3; a++) {
+    t[a] = b->embedded ? b->dir[0][a] : (PetscReal)b->step[a];
+    len += t[a] * t[a];
+  }
+  for (PetscInt a = 0; a < m->bs; a++) s += t[a] * PetscRealPart(u[m->bs * i + a] - u[m->bs * c + a]);
+  return s / PetscSqrtReal(len);
+}
+
+/* Largest |slip| of the owned bar nodes (BarNodeSlip). */
 PetscReal PDModelSlipLocal(PDModel *m, const PetscScalar *u) {
   const PDLattice *lat  = m->lat;
   PetscReal        smax = 0;
   for (PetscInt i = 0; lat->barnode && i < lat->nowned; i++) {
-    const PetscInt q = lat->barnode[i], bs = m->bs;
-    const PDBar   *b;
-    PetscInt       c;
-    PetscReal      t[3], len = 0, s = 0;
-    if (q < 0 || lat->bn_role[q] != PD_BAR_NODE) continue;
-    b = &m->scene->bar[lat->bn_bar[q]];
-    c = PDLatticeLocalIndex(lat, b->embedded ? lat->bn_gid[q + PD_BAR_ANCHOR_ALONG] : PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
-    for (PetscInt a = 0; a < 3; a++) {
-      t[a] = b->embedded ? b->dir[0][a] : (PetscReal)b->step[a];
-      len += t[a] * t[a];
-    }
-    for (PetscInt a = 0; a < bs; a++) s += t[a] * PetscRealPart(u[bs * i + a] - u[bs * c + a]);
-    smax = PetscMax(smax, PetscAbsReal(s) / PetscSqrtReal(len));
+    const PetscInt q = lat->barnode[i];
+    if (q >= 0 && lat->bn_role[q] == PD_BAR_NODE) smax = PetscMax(smax, PetscAbsReal(BarNodeSlip(m, u, i, q)));
   }
   return smax;
+}
+
+/* Per owned node, for the fields: the stress of its bar segment with the largest |stress| (signed, Pa), the
+   largest committed plastic strain of its segments, and a bar node's slip (BarNodeSlip); 0 where a node has
+   none. slip may be NULL. */
+void PDModelBarFieldsLocal(PDModel *m, const PetscScalar *u, PetscScalar *stress, PetscScalar *plastic, PetscScalar *slip) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  for (PetscInt i = 0; i < lat->nowned; i++) {
+    const PetscInt q = lat->barnode ? lat->barnode[i] : -1;
+    stress[i] = plastic[i] = 0;
+    if (slip) slip[i] = q >= 0 && lat->bn_role[q] == PD_BAR_NODE ? BarNodeSlip(m, u, i, q) : 0;
+  }
+  for (PetscInt sg = 0; sg < bd->nseg; sg++) {
+    const PetscInt e = bd->seg_bond[sg], end[2] = {bd->a[e], bd->b[e]};
+    PetscReal      dir[3], L0, L, s, q, g, gp, sp, sigma;
+    PetscBool      rupt;
+    BondState(m->scene, m->bs, &lat->x[3 * end[0]], &lat->x[3 * end[1]], &u[m->bs * end[0]], &u[m->bs * end[1]], dir, &L0, &L, &s, &q);
+    SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
+    sigma = g / PDBarArea(&m->scene->bar[bd->seg_bar[sg]]);
+    for (PetscInt k = 0; k < 2; k++) {
+      if (end[k] >= lat->nowned) continue;
+      if (PetscAbsReal(sigma) > PetscAbsReal(PetscRealPart(stress[end[k]]))) stress[end[k]] = sigma;
+      plastic[end[k]] = PetscMax(PetscRealPart(plastic[end[k]]), PetscAbsReal(m->sp_n[sg]));
+    }
+  }
 }
 
 /* Whether local node i has a constrained dof (a support, or a load by prescribed displacement). */

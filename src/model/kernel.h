@@ -93,6 +93,7 @@ void      PDModelCommitBond(PDModel *, PetscInt e, PetscReal s);
 void      PDModelCommitSegment(PDModel *, PetscInt sg, PetscReal s);
 PetscReal PDModelSteelStressLocal(PDModel *, const PetscScalar *u);
 PetscReal PDModelSlipLocal(PDModel *, const PetscScalar *u);
+void      PDModelBarFieldsLocal(PDModel *, const PetscScalar *u, PetscScalar *stress, PetscScalar *plastic, PetscScalar *slip);
 #define PD_CRUSH_TIE 1e-6 /* relative difference of two bonds' compression below which they tie */
 void PDModelCrushingLocal(PDModel *, const PetscScalar *u, const PetscScalar *theta, PetscReal *ratio, PetscInt64 *gid, PetscReal *s_min,
                           PetscReal at[3]);

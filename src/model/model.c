@@ -845,6 +845,25 @@ PetscErrorCode PDModelSteelStress(PDModel *m, Vec u, PetscReal *stress, PetscRea
   PetscFunctionReturn(0);
 }
 
+/* The bars' nodal fields at u (PDModelBarFieldsLocal), into vectors of one entry per owned node; slip may be NULL. */
+PetscErrorCode PDModelBarFields(PDModel *m, Vec u, Vec stress, Vec plastic, Vec slip) {
+  const PetscScalar *ul;
+  PetscScalar       *st, *pl, *sl = NULL;
+  Vec                loc;
+
+  PetscFunctionBeginUser;
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &loc));
+  PetscCall(VecGetArray(stress, &st));
+  PetscCall(VecGetArray(plastic, &pl));
+  if (slip) PetscCall(VecGetArray(slip, &sl));
+  PDModelBarFieldsLocal(m, ul, st, pl, sl);
+  if (slip) PetscCall(VecRestoreArray(slip, &sl));
+  PetscCall(VecRestoreArray(plastic, &pl));
+  PetscCall(VecRestoreArray(stress, &st));
+  PetscCall(PDModelRestoreLocal(m, &ul, &loc));
+  PetscFunctionReturn(0);
+}
+
 /* The bond closest to crushing over all ranks (PDModelCrushingLocal): -s / eps_cu, its stretch s and its
    midpoint; of ratios that tie the smallest global bond id, from the lowest rank that holds it (a bond
    with a ghost end is held by two). Off (ratio -PETSC_MAX_REAL, s 0) where no material has -pd_eps_cu. */
