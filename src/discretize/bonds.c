@@ -258,7 +258,8 @@ static void EmbeddedPairConstants(const PDScene *sc, const PDLattice *lat, Petsc
     PetscInt  corner[8];
     PetscReal L2 = 0;
     for (PetscInt a = 0; a < 3; a++) L2 += PetscSqr(lat->x[3 * j + a] - lat->x[3 * i + a]);
-    *coef = PD_ANCHOR_STIFFNESS * cell / AnchorCorners(sc, lat, q - r, corner) * PetscSqrtReal(L2);
+    *coef     = PD_ANCHOR_STIFFNESS * cell / AnchorCorners(sc, lat, q - r, corner) * PetscSqrtReal(L2);
+    *material = lat->material[qi >= 0 ? j : i]; /* the corner's concrete: a crack through the cell breaks the ties across it */
   }
 }
 

@@ -774,6 +774,7 @@ void PDModelCrushingLocal(PDModel *m, const PetscScalar *u, const PetscScalar *t
     PetscReal      r, s;
     PetscInt64     id;
     if (k >= PD_MAX_MATERIALS || m->scene->material[k].eps_cu <= 0) continue;
+    if (lat->barnode && (lat->barnode[i] >= 0 || lat->barnode[j] >= 0)) continue; /* an anchor's ties: not the concrete's own */
     if (PetscRealPart(theta[i]) >= 0 || PetscRealPart(theta[j]) >= 0 || NodeHeld(m, i) || NodeHeld(m, j)) continue;
     s = PDModelBondStretch(m, u, e);
     if (s >= 0) continue;
