@@ -79,7 +79,8 @@ FLEXURE = [
     ("flexure_embedded", "path following as the first, the bar embedded", PATH + ["-pd_bar0_embedded", "true", "-pd_lambda_max", "0.5",
                                                                                    "-pd_section_x", "0.65"]),
     ("flexure_embedded_d120", "path following as the first, the bar embedded at d = 120 mm, between two node lines",
-     PATH + ["-pd_bar0_embedded", "true", "-pd_bar0_line", "0,0.03,1.3,0.03", "-pd_lambda_max", "0.5", "-pd_section_x", "0.65"]),
+     PATH + ["-pd_steps", "400", "-pd_bar0_embedded", "true", "-pd_bar0_line", "0,0.03,1.3,0.03", "-pd_lambda_max", "0.5", "-pd_section_x",
+             "0.65"]),  # it takes more than 20 times 200 steps to its peak
 ]
 
 
