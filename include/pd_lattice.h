@@ -80,7 +80,15 @@ static inline PetscBool PDBarHasNodes(const PDBar *b) {
 #define PD_MATERIAL_ELASTIC PD_MAX_MATERIALS
 /* The material of bar k's bond-slip links: their law is the bar's bond-slip law. */
 #define PD_MATERIAL_SLIP(k) (PD_MAX_MATERIALS + 1 + (k))
-#define PD_MATERIALS_ALL (PD_MAX_MATERIALS + 1 + PD_MAX_BARS)
+/* The material of the ties from an embedded bar's anchors to the concrete of material m (bonds.c): m's law with its
+   tensile onset lowered by PD_ANCHOR_STIFFNESS, the factor the ties are stiffer than the concrete they stand for, so
+   that across a crack they carry no more than that concrete did. */
+#define PD_MATERIAL_TIE(m) (PD_MAX_MATERIALS + 1 + PD_MAX_BARS + (m))
+#define PD_MATERIALS_ALL (2 * PD_MAX_MATERIALS + 1 + PD_MAX_BARS)
+/* An embedded bar's anchor is tied to the corners of the lattice cell its bar node lies in, together this
+   many times as stiff as the concrete cell (E V / dx^2): along the bar the ties sit in series with the bond
+   law, whose slope at zero slip is of the cell's order, and stiffer ties would only stiffen the equations */
+#define PD_ANCHOR_STIFFNESS 10
 _Static_assert(PD_MATERIALS_ALL <= 256, "a bond's material is held in one byte");
 
 #define PD_SHARES 4 /* a node's family shares: volume, stiffness along x, y, z (bonds.c) */

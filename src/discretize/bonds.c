@@ -66,10 +66,6 @@ static PetscErrorCode PairListPush(PairList *pl, PetscInt a, PetscInt b) {
    the bar carries. */
 typedef enum { PD_BARPAIR_SEGMENT, PD_BARPAIR_LINK, PD_BARPAIR_TIE, PD_BARPAIR_ANCHOR, PD_BARPAIR_CORNER } PDBarPair;
 #define PD_MAX_BAR_PARTNERS 32 /* a bar node has at most 9; a lattice node ties to at most this many */
-/* An embedded bar's anchor is tied to the corners of the lattice cell its bar node lies in, together this
-   many times as stiff as the concrete cell (E V / dx^2): along the bar the ties sit in series with the bond
-   law, whose slope at zero slip is of the cell's order, and stiffer ties would only stiffen the equations */
-#define PD_ANCHOR_STIFFNESS 10
 
 static PetscInt Gcd(PetscInt a, PetscInt b) {
   a = PetscAbsInt(a);
@@ -258,8 +254,9 @@ static void EmbeddedPairConstants(const PDScene *sc, const PDLattice *lat, Petsc
     PetscInt  corner[8];
     PetscReal L2 = 0;
     for (PetscInt a = 0; a < 3; a++) L2 += PetscSqr(lat->x[3 * j + a] - lat->x[3 * i + a]);
-    *coef     = PD_ANCHOR_STIFFNESS * cell / AnchorCorners(sc, lat, q - r, corner) * PetscSqrtReal(L2);
-    *material = lat->material[qi >= 0 ? j : i]; /* the corner's concrete: a crack through the cell breaks the ties across it */
+    *coef            = PD_ANCHOR_STIFFNESS * cell / AnchorCorners(sc, lat, q - r, corner) * PetscSqrtReal(L2);
+    const PetscInt m = lat->material[qi >= 0 ? j : i]; /* the corner's: a crack through the cell breaks the ties across it */
+    *material        = m < sc->nmaterials ? PD_MATERIAL_TIE(m) : PD_MATERIAL_ELASTIC; /* a plate's stay elastic */
   }
 }
 

@@ -257,7 +257,13 @@ PetscErrorCode PDModelCreate(const PDScene *sc, const PDLattice *lat, const PDBo
   m->lat   = lat;
   m->bonds = bd;
   m->bs    = sc->dim;
-  for (PetscInt k = 0; k < sc->nmaterials; k++) PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
+  for (PetscInt k = 0; k < sc->nmaterials; k++) {
+    PDLaw *tie = &m->law[PD_MATERIAL_TIE(k)];
+    PetscCall(PDLawSetUp(sc, &sc->material[k], &m->law[k]));
+    *tie = m->law[k]; /* the ties of embedded bars' anchors (pd_lattice.h) */
+    tie->nominal.s0 /= PD_ANCHOR_STIFFNESS;
+    tie->confine = 0;
+  }
   for (PetscInt k = 0; k < sc->nbars; k++) {
     PDSteelSetUp(&sc->bar[k], &m->steel[k]);
     if (sc->bar[k].slip) PDLawSetUpSlip(&sc->bar[k], PD_BAR_NODE_SHIFT * sc->dx, &m->law[PD_MATERIAL_SLIP(k)]);
