@@ -757,7 +757,7 @@ static inline PetscBool NodeHeld(const PDModel *m, PetscInt i) {
    (-pd_eps_cu), its stretch and its midpoint. Only a bond whose two nodes are compressed counts (theta < 0):
    a bond across a crack shortens as the crack's faces slide past each other, without crushing anything,
    and its nodes dilate with the crack's opening. Left out too (docs/reinforcement.md, Failure mode): the
-   bonds of no-fail zones, plates and bars' links, whose material is none of the scene's, and the bonds of a
+   bonds of no-fail zones, plates, bars' links and anchor ties, whose material is none of the scene's, and the bonds of a
    node held by a support or a prescribed displacement, since in the layer next to a face so held a
    bond-based lattice strains well beyond the body's mean. Of ratios equal to PD_CRUSH_TIE the bond of the
    smallest global id (*gid): a symmetric body has many such, whose order the solver's round-off would
@@ -774,7 +774,6 @@ void PDModelCrushingLocal(PDModel *m, const PetscScalar *u, const PetscScalar *t
     PetscReal      r, s;
     PetscInt64     id;
     if (k >= PD_MAX_MATERIALS || m->scene->material[k].eps_cu <= 0) continue;
-    if (lat->barnode && (lat->barnode[i] >= 0 || lat->barnode[j] >= 0)) continue; /* an anchor's ties: not the concrete's own */
     if (PetscRealPart(theta[i]) >= 0 || PetscRealPart(theta[j]) >= 0 || NodeHeld(m, i) || NodeHeld(m, j)) continue;
     s = PDModelBondStretch(m, u, e);
     if (s >= 0) continue;

@@ -162,14 +162,13 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
              "Option %s_line: an embedded bar needs -pd_kinematics small: its links to the concrete are 1e-4 dx long, and under finite "
              "kinematics a sideways move would read as slip",
              b->option);
-  PetscCheck(!b->embedded || b->slip || b->perfect, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
-             off > 0.5 + 1e-9
-                 ? "Option %s_line: the bar does not run along a lattice direction within the horizon (its far end lies %g m "
-                   "off the nearest one, (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT
-                   ")), so it is embedded on nodes of its own, which needs %s_bond slip or perfect"
-                 : "Option %s_embedded: an embedded bar is on nodes of its own (the far end %g m off the chain, (%" PetscInt_FMT
-                   ", %" PetscInt_FMT ", %" PetscInt_FMT ")), which needs %s_bond slip or perfect",
+  PetscCheck(!b->embedded || b->slip || b->perfect || off <= 0.5 + 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_line: the bar does not run along a lattice direction within the horizon (its far end lies %g m off the nearest "
+             "one, (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ")), so it is embedded on nodes of its own, which needs "
+             "%s_bond slip or perfect",
              b->option, (double)(off * sc->dx), b->step[0], b->step[1], b->step[2], b->option);
+  PetscCheck(!b->embedded || b->slip || b->perfect, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
+             "Option %s_embedded: an embedded bar is on nodes of its own, which needs %s_bond slip or perfect", b->option, b->option);
   if (b->embedded)
     EmbeddedGeometry(sc, b);
   else {
