@@ -18,11 +18,16 @@ from common import curve_rows, EXE, RESULTS_DIR, ROOT, load_results, run_timed, 
 JSON = os.path.join(RESULTS_DIR, "pullout.json")
 D, L, FCM = 0.012, 0.06, 38e6
 SLIPS = (0.1e-3, 0.2e-3, 0.5e-3, 1e-3, 1.5e-3, 2e-3, 3e-3, 4e-3, 5e-3, 5.9e-3)  # an embedded bar's end slips 6 mm less its anchor's give
+SOFTENING = ["-pd_law", "nonlinear", "-pd_ft", "3e6", "-pd_Gf", "100"]
 # (scene, options): the bar on its chain of lattice nodes, the same bar embedded (on nodes of its own at its true
 # places, anchored to the concrete), and an embedded bar along (0.8, 0.36, 0.48), which no lattice direction holds
 CASES = {"on its chain of nodes, along x": ("pullout", []), "embedded, along x": ("pullout", ["-pd_bar0_embedded", "true"]),
          "embedded, along (0.8, 0.36, 0.48)": ("pullout_inclined", []),
-         "embedded, along (0.8, 0.36, 0.48), dx = 5 mm": ("pullout_inclined", ["-pd_dx", "0.005"])}
+         "embedded, along (0.8, 0.36, 0.48), dx = 5 mm": ("pullout_inclined", ["-pd_dx", "0.005"]),
+         # in concrete that cracks (the non-linear law, f_t = 3 MPa, G_F = 100 N/m): an embedded bar's anchor ties behind
+         # its nodes soften under the bond stress (docs/reinforcement.md)
+         "on its chain of nodes, along x, softening concrete": ("pullout", SOFTENING),
+         "embedded, along x, softening concrete": ("pullout", SOFTENING + ["-pd_bar0_embedded", "true"])}
 
 
 def law_force(s):
@@ -88,7 +93,7 @@ def report():
     fig, ax = plt.subplots(figsize=(6, 4))
     xs = [1e-5 * i for i in range(1, 601)]
     ax.plot([1e3 * x for x in xs], [law_force(x) / 1e3 for x in xs], "k--", label="tau(s) pi d L (fib MC2010)")
-    for (case, r), mark in zip(runs.items(), "osd^"):
+    for (case, r), mark in zip(runs.items(), "osd^vx"):
         ax.plot([1e3 * s for s, _ in r["curve"]], [f / 1e3 for _, f in r["curve"]], mark + "-", ms=3, label=case)
     ax.set_xlabel("slip of the loaded end (mm)")
     ax.set_ylabel("pull-out force (kN)")
