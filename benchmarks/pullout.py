@@ -74,7 +74,9 @@ def report():
              "Written by `benchmarks/pullout.py` from `pullout.json`. `options/pullout.opts`: a 12 mm bar bonded over L = 60 mm in an "
              "elastic 150 mm concrete cube (dx = 10 mm), pulled out by 6 mm in 60 increments, its bar on the chain of lattice nodes "
              "along x or embedded (on nodes of its own at its true places, anchored to the concrete of their lattice cells: "
-             "docs/reinforcement.md), and `options/pullout_inclined.opts`, the same bar embedded along (0.8, 0.36, 0.48). Force "
+             "docs/reinforcement.md), `options/pullout_inclined.opts`, the same bar embedded along (0.8, 0.36, 0.48), and the first two "
+             "in concrete that cracks (the non-linear law, f_t = 3 MPa, G_F = 100 N/m), where an embedded bar's anchor ties behind "
+             "its nodes soften under the bond stress. Force "
              "against the slip of the loaded end, over the law's tau(s) pi d L (fib Model Code 2010, pull-out, good bond, f_cm = "
              "38 MPa: tau_max = %.2f MPa). Below s1 the bond stress is not uniform: the loaded end slips more than the rest of the "
              "bar, by the bar's stretch and the concrete's, and the force is below the law at the loaded end's slip." %
