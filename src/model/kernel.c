@@ -637,20 +637,22 @@ void PDModelCommitSegment(PDModel *m, PetscInt sg, PetscReal s) {
   m->ruptured_n[sg] = rupt;
 }
 
-/* Largest |stress| of the bar segments this rank holds: force over the bar's area. */
+/* Stress of bar segment sg at the local displacements u: its force over its bar's area (Pa). */
+static PetscReal SegmentStress(const PDModel *m, const PetscScalar *u, PetscInt sg) {
+  const PDBonds   *bd  = m->bonds;
+  const PDLattice *lat = m->lat;
+  const PetscInt   e = bd->seg_bond[sg], i = bd->a[e], j = bd->b[e];
+  PetscReal        dir[3], L0, L, s, q, g, gp, sp;
+  PetscBool        rupt;
+  BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
+  SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
+  return g / PDBarArea(&m->scene->bar[bd->seg_bar[sg]]);
+}
+
+/* Largest |stress| of the bar segments this rank holds. */
 PetscReal PDModelSteelStressLocal(PDModel *m, const PetscScalar *u) {
-  const PDBonds   *bd   = m->bonds;
-  const PDLattice *lat  = m->lat;
-  PetscReal        smax = 0;
-  for (PetscInt sg = 0; sg < bd->nseg; sg++) {
-    const PetscInt e = bd->seg_bond[sg], i = bd->a[e], j = bd->b[e];
-    const PDBar   *b = &m->scene->bar[bd->seg_bar[sg]];
-    PetscReal      dir[3], L0, L, s, q, g, gp, sp;
-    PetscBool      rupt;
-    BondState(m->scene, m->bs, &lat->x[3 * i], &lat->x[3 * j], &u[m->bs * i], &u[m->bs * j], dir, &L0, &L, &s, &q);
-    SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
-    smax = PetscMax(smax, PetscAbsReal(g) / PDBarArea(b));
-  }
+  PetscReal smax = 0;
+  for (PetscInt sg = 0; sg < m->bonds->nseg; sg++) smax = PetscMax(smax, PetscAbsReal(SegmentStress(m, u, sg)));
   return smax;
 }
 
@@ -731,12 +733,8 @@ void PDModelBarFieldsLocal(PDModel *m, const PetscScalar *u, PetscScalar *stress
     if (slip) slip[i] = q >= 0 && lat->bn_role[q] == PD_BAR_NODE ? BarNodeSlip(m, u, i, q) : 0;
   }
   for (PetscInt sg = 0; sg < bd->nseg; sg++) {
-    const PetscInt e = bd->seg_bond[sg], end[2] = {bd->a[e], bd->b[e]};
-    PetscReal      dir[3], L0, L, s, q, g, gp, sp, sigma;
-    PetscBool      rupt;
-    BondState(m->scene, m->bs, &lat->x[3 * end[0]], &lat->x[3 * end[1]], &u[m->bs * end[0]], &u[m->bs * end[1]], dir, &L0, &L, &s, &q);
-    SegmentForce(m, sg, s, &g, &gp, &sp, &rupt);
-    sigma = g / PDBarArea(&m->scene->bar[bd->seg_bar[sg]]);
+    const PetscInt  e = bd->seg_bond[sg], end[2] = {bd->a[e], bd->b[e]};
+    const PetscReal sigma = SegmentStress(m, u, sg);
     for (PetscInt k = 0; k < 2; k++) {
       if (end[k] >= lat->nowned) continue;
       if (PetscAbsReal(sigma) > PetscAbsReal(PetscRealPart(stress[end[k]]))) stress[end[k]] = sigma;
