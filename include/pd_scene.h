@@ -122,8 +122,10 @@ typedef struct {
   /* embedded (docs/reinforcement.md, "Bars in any direction"): off the lattice directions, or asked for; the bar on
      nodes of its own at its true places, tied to the concrete through anchor nodes */
   PetscBool embedded;
-  PetscReal dir[3][3]; /* unit vectors: along the bar, then across it (one in 2D, two in 3D) */
+  PetscReal dir[3][3]; /* unit vectors: along the bar (a chain's: along its step), then, embedded, across it (one in 2D,
+                          two in 3D) */
   PetscInt  nstation;  /* embedded: its nodes, ceil(length / dx) + 1 evenly along it, ends included */
+  PetscReal spacing;   /* embedded: the distance between them (m) */
   /* bond slip (docs/reinforcement.md): the bar on nodes of its own, tied to the concrete by the fib Model Code 2010
      bond stress-slip law of ribbed bars in pull-out (good bond) */
   PetscBool slip;

@@ -49,10 +49,7 @@ static void Chain(const PDLattice *lat, const PDBar *b, PetscInt base[3], PetscI
    the x-layer of the lattice node nearest to it, which it shadows, and its anchors PD_BAR_NODE_SHIFT dx from it
    against their directions. */
 static void EmbeddedStation(const PDLattice *lat, const PDBar *b, PetscInt st, PetscInt shadow[3], PetscReal place[3], PetscReal *share) {
-  PetscReal len = 0, h;
-  for (PetscInt c = 0; c < 3; c++) len += PetscSqr(b->line[3 + c] - b->line[c]);
-  len = PetscSqrtReal(len);
-  h   = len / (b->nstation - 1);
+  const PetscReal h = b->spacing;
   for (PetscInt c = 0; c < 3; c++) {
     place[c] = c < lat->dim ? b->line[c] + st * h * b->dir[0][c] : 0;
     shadow[c] =
@@ -113,7 +110,7 @@ PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
       lat->bn_role[n] = PD_BAR_NODE;
       for (PetscInt a = 0; a < 3; a++) {
         lat->bn_ijk[3 * n + a]   = base[a] + c * b->step[a];
-        lat->bn_shift[3 * n + a] = PD_BAR_NODE_SHIFT * lat->dx * lat->dx * b->step[a] / ls;
+        lat->bn_shift[3 * n + a] = PD_BAR_NODE_SHIFT * lat->dx * b->dir[0][a];
       }
       /* a node carries the bond of the bar within half a step either side, up to the bar's ends: the shares add up to
          the bar's length (a lattice that ends before the bar's end cuts it there) */

@@ -701,13 +701,9 @@ static PetscReal BarNodeSlip(const PDModel *m, const PetscScalar *u, PetscInt i,
   const PDLattice *lat = m->lat;
   const PDBar     *b   = &m->scene->bar[lat->bn_bar[q]];
   const PetscInt c = PDLatticeLocalIndex(lat, b->embedded ? lat->bn_gid[q + PD_BAR_ANCHOR_ALONG] : PDLatticeGid(lat, &lat->bn_ijk[3 * q]));
-  PetscReal      t[3], len = 0, s = 0;
-  for (PetscInt a = 0; a < 3; a++) {
-    t[a] = b->embedded ? b->dir[0][a] : (PetscReal)b->step[a];
-    len += t[a] * t[a];
-  }
-  for (PetscInt a = 0; a < m->bs; a++) s += t[a] * PetscRealPart(u[m->bs * i + a] - u[m->bs * c + a]);
-  return s / PetscSqrtReal(len);
+  PetscReal      s = 0;
+  for (PetscInt a = 0; a < m->bs; a++) s += b->dir[0][a] * PetscRealPart(u[m->bs * i + a] - u[m->bs * c + a]);
+  return s;
 }
 
 /* Largest |slip| of the owned bar nodes (BarNodeSlip). */

@@ -57,6 +57,7 @@ static void EmbeddedGeometry(const PDScene *sc, PDBar *b) {
   len = PetscSqrtReal(len);
   for (PetscInt c = 0; c < 3; c++) t[c] /= len;
   b->nstation = (PetscInt)PetscCeilReal(len / sc->dx - 1e-9) + 1;
+  b->spacing  = len / (b->nstation - 1);
   if (sc->dim == 2) {
     n1[0] = -t[1];
     n1[1] = t[0];
@@ -173,6 +174,7 @@ static PetscErrorCode ReadBar(PetscOptionItems *PetscOptionsObject, PDScene *sc,
     EmbeddedGeometry(sc, b);
   else {
     const PetscReal ls = PetscSqrtReal((PetscReal)(b->step[0] * b->step[0] + b->step[1] * b->step[1] + b->step[2] * b->step[2]));
+    for (PetscInt a = 0; a < 3; a++) b->dir[0][a] = b->step[a] / ls;
     PetscCheck(along >= ls - 1e-9, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT,
                "Option %s_line: the bar is shorter than one step (%g m) of its lattice direction (%" PetscInt_FMT ", %" PetscInt_FMT
                ", %" PetscInt_FMT ") and would hold no segment; embed it (%s_embedded)",
