@@ -142,6 +142,19 @@ static PetscInt AnchorCorners(const PDScene *sc, const PDLattice *lat, PetscInt 
   return n;
 }
 
+/* The bar's own nodes before and after bar node q (its segments), the first partners of every bar node. */
+static PetscInt SegmentPartners(const PDScene *sc, const PDLattice *lat, PetscInt q, PetscInt gid[PD_MAX_BAR_PARTNERS],
+                                PDBarPair kind[PD_MAX_BAR_PARTNERS]) {
+  const PetscInt stride = PDBarStride(&sc->bar[lat->bn_bar[q]], lat->dim);
+  PetscInt       n      = 0;
+  for (PetscInt d = -stride; d <= stride; d += 2 * stride)
+    if (q + d >= 0 && q + d < lat->nbarnodes && lat->bn_bar[q + d] == lat->bn_bar[q]) {
+      gid[n]    = lat->bn_gid[q + d];
+      kind[n++] = PD_BARPAIR_SEGMENT;
+    }
+  return n;
+}
+
 /* The partners of a node q of an embedded bar (PDBarRole): a bar node's are the bar nodes before and after
    it (the segments) and its anchors, an anchor's its bar node and its corners. An anchor without corners
    (its bar node in a void) is left out, and left without bonds, as a void's node is. */
@@ -162,11 +175,7 @@ static PetscInt EmbeddedPartners(const PDScene *sc, const PDLattice *lat, PetscI
     }
     return n;
   }
-  for (PetscInt d = -stride; d <= stride; d += 2 * stride) /* segments */
-    if (q + d >= 0 && q + d < lat->nbarnodes && lat->bn_bar[q + d] == lat->bn_bar[q]) {
-      gid[n]    = lat->bn_gid[q + d];
-      kind[n++] = PD_BARPAIR_SEGMENT;
-    }
+  n = SegmentPartners(sc, lat, q, gid, kind);
   if (AnchorCorners(sc, lat, q, corner))
     for (PetscInt a = 1; a < stride; a++) {
       gid[n]    = lat->bn_gid[q + a];
@@ -186,12 +195,7 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
   PetscReal       x0[3];
 
   if (b->embedded) return EmbeddedPartners(sc, lat, q, gid, kind);
-  for (PetscInt d = -1; d <= 1; d += 2) /* segments */
-    if (q + d >= 0 && q + d < lat->nbarnodes && lat->bn_bar[q + d] == lat->bn_bar[q]) {
-      gid[n]  = lat->bn_gid[q + d];
-      kind[n] = PD_BARPAIR_SEGMENT;
-      n++;
-    }
+  n = SegmentPartners(sc, lat, q, gid, kind);
   for (PetscInt c = 0; c < 3; c++) {
     p[0][c] = b->step[c];
     x0[c]   = c < lat->dim ? lat->origin[c] + c0[c] * lat->dx : 0;
