@@ -61,6 +61,11 @@ typedef struct {
   PetscInt      *barnode;   /* [nlocal] the bar node a local node is, or -1 (NULL without bond slip) */
 } PDLattice;
 
+/* The place of the lattice node with indices ijk (0 along the axes the lattice does not have). */
+static inline void PDLatticePlace(const PDLattice *lat, const PetscInt ijk[3], PetscReal x[3]) {
+  for (PetscInt c = 0; c < 3; c++) x[c] = c < lat->dim ? lat->origin[c] + ijk[c] * lat->dx : 0;
+}
+
 /* What a node of a bar is: the bar's own (its segments join them), or on an embedded bar one of its anchors,
    each tied to the concrete of the lattice cell the bar node lies in and linked to the bar node along one
    direction: along the bar (the bond, slip or perfect) or across it (elastic). An embedded bar's nodes go

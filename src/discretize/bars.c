@@ -89,14 +89,15 @@ PetscErrorCode PDLatticeSetUpBarNodes(const PDScene *sc, PDLattice *lat) {
         PetscInt  shadow[3];
         PetscReal place[3], share;
         EmbeddedStation(lat, b, st, shadow, place, &share);
+        PetscReal x0[3];
+        PDLatticePlace(lat, shadow, x0);
         for (PetscInt r = 0; r <= lat->dim; r++, n++) {
           lat->bn_bar[n]    = k;
           lat->bn_role[n]   = (unsigned char)r;
           lat->bn_length[n] = share;
           for (PetscInt a = 0; a < 3; a++) {
-            const PetscReal x0       = a < lat->dim ? lat->origin[a] + shadow[a] * lat->dx : 0;
             lat->bn_ijk[3 * n + a]   = shadow[a];
-            lat->bn_shift[3 * n + a] = place[a] - x0 - (r ? PD_BAR_NODE_SHIFT * lat->dx * b->dir[r - 1][a] : 0);
+            lat->bn_shift[3 * n + a] = place[a] - x0[a] - (r ? PD_BAR_NODE_SHIFT * lat->dx * b->dir[r - 1][a] : 0);
           }
           lat->bn_gid[n] = count[shadow[0]]++;
         }

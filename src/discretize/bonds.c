@@ -113,7 +113,8 @@ static PetscBool InVoid(const PDScene *sc, const PetscReal x[3]) {
 
 /* The place of bar node q: its shadow's place plus its shift. */
 static void BarNodePlace(const PDLattice *lat, PetscInt q, PetscReal x[3]) {
-  for (PetscInt c = 0; c < 3; c++) x[c] = (c < lat->dim ? lat->origin[c] + lat->bn_ijk[3 * q + c] * lat->dx : 0) + lat->bn_shift[3 * q + c];
+  PDLatticePlace(lat, &lat->bn_ijk[3 * q], x);
+  for (PetscInt c = 0; c < 3; c++) x[c] += lat->bn_shift[3 * q + c];
 }
 
 /* The lattice nodes an anchor of an embedded bar ties to: the corners of the lattice cell its bar node (bar
@@ -128,13 +129,13 @@ static PetscInt AnchorCorners(const PDScene *sc, const PDLattice *lat, PetscInt 
   for (PetscInt c = 0; c < lat->dim; c++) lo[c] = (PetscInt)PetscFloorReal((p[c] - lat->origin[c]) / lat->dx);
   for (PetscInt k = 0; k < (1 << lat->dim); k++) {
     PetscInt  ijk[3] = {0, 0, 0};
-    PetscReal x[3]   = {0, 0, 0};
+    PetscReal x[3];
     PetscBool out = PETSC_FALSE, cut = PETSC_FALSE;
     for (PetscInt c = 0; c < lat->dim; c++) {
       ijk[c] = lo[c] + ((k >> c) & 1);
       out    = out || ijk[c] < 0 || ijk[c] >= lat->n[c] ? PETSC_TRUE : PETSC_FALSE;
-      x[c]   = lat->origin[c] + ijk[c] * lat->dx;
     }
+    PDLatticePlace(lat, ijk, x);
     if (out || InVoid(sc, x)) continue;
     for (PetscInt m = 0; m < sc->nnotches && !cut; m++) cut = NotchCuts(&sc->notch[m], p, x, sc->dim, tol);
     if (!cut) gid[n++] = PDLatticeGid(lat, ijk);
@@ -196,10 +197,8 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
 
   if (b->embedded) return EmbeddedPartners(sc, lat, q, gid, kind);
   n = SegmentPartners(sc, lat, q, gid, kind);
-  for (PetscInt c = 0; c < 3; c++) {
-    p[0][c] = b->step[c];
-    x0[c]   = c < lat->dim ? lat->origin[c] + c0[c] * lat->dx : 0;
-  }
+  for (PetscInt c = 0; c < 3; c++) p[0][c] = b->step[c];
+  PDLatticePlace(lat, c0, x0);
   np = 1 + CrossDirections(b->step, lat->dim, cross);
   for (PetscInt k = 1; k < np; k++)
     for (PetscInt c = 0; c < 3; c++) p[k][c] = cross[k - 1][c];
@@ -216,8 +215,8 @@ static PetscInt BarPartners(const PDScene *sc, const PDLattice *lat, PetscInt q,
       for (PetscInt c = 0; c < 3; c++) {
         ijk[c] = c0[c] + d * p[k][c];
         out    = out || ijk[c] < 0 || ijk[c] >= lat->n[c] ? PETSC_TRUE : PETSC_FALSE;
-        x[c]   = c < lat->dim ? lat->origin[c] + ijk[c] * lat->dx : 0;
       }
+      PDLatticePlace(lat, ijk, x);
       if (out || InVoid(sc, x)) continue;
       for (PetscInt m = 0; m < sc->nnotches && !cut; m++) cut = NotchCuts(&sc->notch[m], x0, x, sc->dim, tol);
       if (cut) continue;
@@ -544,7 +543,7 @@ static PetscErrorCode CheckOnePiece(const PDScene *sc, const PDLattice *lat, con
     PetscReal x[2][3];
     for (PetscInt s = 0; s < 2; s++) {
       PDLatticeNodeIndices(lat, first[s], ijk[s]);
-      for (PetscInt a = 0; a < 3; a++) x[s][a] = a < lat->dim ? lat->origin[a] + ijk[s][a] * lat->dx : 0;
+      PDLatticePlace(lat, ijk[s], x[s]);
     }
     SETERRQ(lat->comm, PETSC_ERR_USER_INPUT,
             "Options %s: the notches and voids cut the body into %" PetscInt_FMT

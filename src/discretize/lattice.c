@@ -76,9 +76,7 @@ static void NodePosition(const PDLattice *lat, PetscInt gid, PetscReal x[3]) {
   PetscInt ijk[3];
 
   PDLatticeNodeIndices(lat, gid, ijk);
-  x[0] = lat->origin[0] + ijk[0] * lat->dx;
-  x[1] = lat->origin[1] + ijk[1] * lat->dx;
-  x[2] = lat->dim == 3 ? lat->origin[2] + ijk[2] * lat->dx : 0;
+  PDLatticePlace(lat, ijk, x);
 }
 
 /* The ghost ranges: global ids [g[0], g[1]) below the owned slab and [g[2], g[3]) above it. */
