@@ -178,6 +178,7 @@ typedef struct {
   PetscReal        unload_at;      /* after the peak, reverse the path once the load falls to this fraction of it; 0: off */
   PetscReal        reload_at;      /* while unloading, load again once the load falls to this fraction of the peak */
   PDTangent        tangent;
+  PetscReal        steel_tangent_floor;   /* least slope, over E, a yielded bar segment gives Newton's tangent */
   PDPCMatrix       pc_matrix;             /* matrix the preconditioner is built from: the tangent, or the secant one */
   PetscReal        pc_reach;              /* bonds up to this length (grid spacings) in the preconditioning matrix; 0: all; -1: default */
   PetscBool        assembly_changed_rows; /* later assemblies rewrite only rows with a changed bond tangent */

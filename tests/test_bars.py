@@ -1,10 +1,12 @@
-"""Steel bars (-pd_barK_*): axial stiffness and yield force as built, a bar holding a cut prism, MPI.
-Usage: test_bars.py axial|diagonal|notch|mpi|restart|stuttgart|pullout|embedded"""
+"""Steel bars (-pd_barK_*): axial stiffness and yield force as built, a bar holding a cut prism, its yield
+plateau traced by path following, MPI.
+Usage: test_bars.py axial|diagonal|notch|plateau|mpi|restart|stuttgart|pullout|embedded"""
 import math
 import os
 import sys
+import tempfile
 
-from pdtest import check, rel, run
+from pdtest import check, rel, run, scene
 
 AREA = math.pi * 0.012 ** 2 / 4  # m^2, the 12 mm bar of options/bar_prism.opts
 FY, ES = 500e6, 200e9
@@ -77,8 +79,10 @@ def diagonal():
 def notch():
     # Cut through at mid-length, the prism hangs on its bar: the bar's segment across the cut is kept without
     # concrete, and once it yields the load stays at f_y A_s exactly, at any dx (1e-9: round-off).
+    # (Newton converges linearly on the yielded segment, whose tangent slope has a floor, -pd_steel_tangent_floor:
+    # -snes_rtol 1e-14 asks it for round-off)
     for dx in ("0.02", "0.01"):
-        r = run("bar_prism", "-pd_dx", dx, "-ksp_rtol", "1e-12")
+        r = run("bar_prism", "-pd_dx", dx, "-ksp_rtol", "1e-12", "-snes_rtol", "1e-14")
         c, s = r.curve, r.summary
         check(s["effects"] == ["elasticity", "steel_plasticity"], "effects %s" % s["effects"])
         top = max(x["load_N"] for x in c)
@@ -103,7 +107,7 @@ def notch():
     # a cut through a plane of nodes keeps only the bonds within the plane there (the notch rule), so the
     # plane's 25 nodes have no stiffness across it and that dof is pinned, but for the bar's node, which
     # its segments hold: 24 pinned dofs, and the two halves still hang on the bar
-    r = run("bar_prism", "-pd_notch0_box", "0.21,-0.01,-0.01,0.21,0.11,0.11", "-ksp_rtol", "1e-12")
+    r = run("bar_prism", "-pd_notch0_box", "0.21,-0.01,-0.01,0.21,0.11,0.11", "-ksp_rtol", "1e-12", "-snes_rtol", "1e-14")
     s = r.summary
     check(s["zero_stiffness_dofs_pinned"] == 24 and s["constrained_dofs"] == 150 + 24, "cut through a node plane: %d dofs pinned (24), "
           "%d constrained (the two faces' 150 and those)" % (s["zero_stiffness_dofs_pinned"], s["constrained_dofs"]))
@@ -112,9 +116,42 @@ def notch():
     check(plain.summary["bars"]["first_yield"] is None, "a bar that never yields reports no first yield")
 
 
+def plateau():
+    # The cut prism pulled by a force on its far face (held across, free along the bar): at f_y A_s its bar's
+    # segment across the cut yields and the prism is a mechanism, a limit load with no stiffness along the pull.
+    # Path following goes along the plateau: the load stays at f_y A_s while the cut opens to 10 mm, 40 times
+    # the opening at the first yield. The tangent's floor on the yielded segment's slope is what lets it
+    # (-pd_steel_tangent_floor; with the consistent slope, 0, the bordering's solve is singular there and the
+    # path stops at the limit load). The work is exact on the plateau and through the step that meets the yield
+    # surface (each segment's work over a step is its law's, not the cubic of the end slopes)
+    with open(scene("bar_prism")) as f:
+        lines = [x for x in f if not x.startswith("-pd_region1_")]
+    path = os.path.join(tempfile.mkdtemp(prefix="pdtest_scene_"), "bar_prism_force.opts")
+    with open(path, "w") as f:
+        f.writelines(lines + ["-pd_region1_box 0.4,0,0,0.4,0.1,0.1\n", "-pd_region1_kind force\n", "-pd_region1_force %r,0,0\n" % (2 * FY * AREA),
+                              "-pd_region2_box 0.4,0,0,0.4,0.1,0.1\n", "-pd_region2_kind support\n", "-pd_region2_dofs y,z\n"])
+    r = run(None, "-options_file", path, "-pd_control", "arclength", "-pd_cmod_points", "0.18,0.05,0.05,0.22,0.05,0.05", "-pd_stop_cmod", "0.01")
+    c, s = r.curve, r.summary
+    first = next(x for x in c if x["yielded_segments"] > 0)
+    worst = max(rel(x["load_N"], FY * AREA) for x in c if x["step"] > first["step"])
+    check(s["status"].startswith("completed: CMOD") and c[-1]["cmod_m"] > 40 * first["cmod_m"],
+          "force control past the limit load: %s, opening %.2f mm, %.0f times the first yield's" % (s["status"], 1e3 * c[-1]["cmod_m"],
+                                                                                                    c[-1]["cmod_m"] / first["cmod_m"]))
+    check(worst < 1e-6, "on the plateau the load stays at f_y A_s (largest difference %.1e, 1e-6)" % worst)
+    held = c[-1]["stored_J"] + c[-1]["dissipated_J"]
+    check(rel(c[-1]["external_J"], held) < 1e-6, "work %.6f J against stored and dissipated %.6f J (1e-6)" % (c[-1]["external_J"], held))
+    # the same exactness under displacement control in ten long steps to 33 mm: the first crosses the yield
+    r = run("bar_prism", "-pd_region1_displacement", "0.033,0,0", "-pd_steps", "10")
+    e = r.curve[-1]
+    held = e["stored_J"] + e["dissipated_J"]
+    check(rel(e["external_J"], held) < 1e-6, "displacement control: work %.6f J against stored and dissipated %.6f J (1e-6)" % (e["external_J"], held))
+
+
 def mpi():
     # Two ranks split the prism across the cut: the same curve as one rank.
-    opts = ["-pd_dx", "0.01", "-ksp_rtol", "1e-12"]
+    # With the yielded segment's consistent slope Newton converges quadratically, and both runs reach its answer to
+    # round-off; under the tangent's floor they would stop at Newton's tolerance, each from its own preconditioner
+    opts = ["-pd_dx", "0.01", "-ksp_rtol", "1e-12", "-pd_steel_tangent_floor", "0"]
     a, b = run("bar_prism", *opts).curve, run("bar_prism", *opts, ranks=2).curve
     worst = max(abs(x["load_N"] - y["load_N"]) / (FY * AREA) for x, y in zip(a, b))
     check(len(a) == len(b) and worst < 1e-9, "2 ranks reproduce one rank: largest load difference %.1e of f_y A_s" % worst)
@@ -261,10 +298,10 @@ def embedded():
           "fields: largest slip %.4f mm (the summary's); at the free end the steel carries %.1f N, its bond %.1f N (1e-4)" % (
               1e3 * abs(slip).max(), sigma[far] * AREA, bond))
     top = follows_bond_law(r, "along (0.8, 0.36, 0.48): ")
-    # 8 layers: two ranks split the bar and its anchors at x = 40 mm. On one rank block ICC(0) fails on this tangent with
-    # a zero pivot and the run goes on with GAMG, which the failed state of the block Jacobi PC, kept until it was
-    # cleared, stopped at every solve
-    short = ["-pd_domain", "0,0,0,0.08,0.15,0.15"]
+    # 8 layers: two ranks split the bar and its anchors at x = 40 mm. On one rank, with the yielded segments' consistent
+    # slope (0, no floor), block ICC(0) fails on this tangent with a zero pivot and the run goes on with GAMG, which
+    # the failed state of the block Jacobi PC, kept until it was cleared, stopped at every solve
+    short = ["-pd_domain", "0,0,0,0.08,0.15,0.15", "-pd_steel_tangent_floor", "0"]
     one, two = run("pullout_inclined", *short), run("pullout_inclined", *short, ranks=2)
     check("going on with GAMG" in one.stdout and one.summary["converged"], "one rank: block ICC(0) failed, the run went on with GAMG and completed")
     worst = max(abs(x["load_N"] - y["load_N"]) / top for x, y in zip(one.curve, two.curve))
@@ -289,5 +326,5 @@ def embedded():
 
 
 if __name__ == "__main__":
-    {"axial": axial, "diagonal": diagonal, "notch": notch, "mpi": mpi, "restart": restart, "stuttgart": stuttgart,
+    {"axial": axial, "diagonal": diagonal, "notch": notch, "plateau": plateau, "mpi": mpi, "restart": restart, "stuttgart": stuttgart,
      "pullout": pullout, "embedded": embedded}[sys.argv[1]]()

@@ -617,8 +617,11 @@ int main(int argc, char **argv) {
   }
   if (!products_only) {
     /* the stretches and the commit's sums the same bits as one by one; the end-slope term to round-off of the
-       products it replaces (which difference two large dot products) */
+       products it replaces (which difference two large dot products), with bars whose steel stays elastic: a
+       segment that yields adds its exact work over the step instead, which no product of tangents gives
+       (tests/test_bars.py plateau checks it) */
     const char *acc[] = {"-pd_law nonlinear", "-pd_law bilinear -pd_strength_scatter 0.05",
+                         "-pd_law nonlinear -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 -pd_bar0_diameter 0.004 -pd_bar0_fy 30e9",
                          "-pd_law nonlinear -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 -pd_bar0_diameter 0.004 -pd_bar0_fy 30e6",
                          "-pd_law nonlinear -pd_kinematics finite"};
     for (size_t k = 0; k < sizeof acc / sizeof *acc; k++) {
@@ -628,8 +631,10 @@ int main(int argc, char **argv) {
       PetscCall(AcceptedStepSums(acc[k], &sdiff, &cdiff, &ccdiff, &ediff, &ndiff, &nsoft));
       PetscCall(PetscSNPrintf(what, sizeof what, "stretches by block equal one by one: %s", acc[k]));
       Check(sdiff == 0 ? PETSC_TRUE : PETSC_FALSE, what, sdiff, 0);
-      PetscCall(PetscSNPrintf(what, sizeof what, "end-slope term by bond against products, relative < 1e-12: %s", acc[k]));
-      Check(cdiff < 1e-12 ? PETSC_TRUE : PETSC_FALSE, what, cdiff, 1e-12);
+      if (!strstr(acc[k], "30e6")) {
+        PetscCall(PetscSNPrintf(what, sizeof what, "end-slope term by bond against products, relative < 1e-12: %s", acc[k]));
+        Check(cdiff < 1e-12 ? PETSC_TRUE : PETSC_FALSE, what, cdiff, 1e-12);
+      }
       if (!strstr(acc[k], "finite")) {
         PetscCall(PetscSNPrintf(what, sizeof what, "end-slope term from the commit's loop equals PDModelTangentChange's: %s", acc[k]));
         Check(ccdiff == 0 ? PETSC_TRUE : PETSC_FALSE, what, ccdiff, 0);

@@ -83,6 +83,7 @@ static inline void ConcreteForce(const PDModel *m, PetscInt e, PetscReal s, Pets
 static inline void SegmentForce(const PDModel *m, PetscInt sg, PetscReal s, PetscReal *g, PetscReal *gp, PetscReal *sp, PetscBool *rupt) {
   const PetscReal c = m->bonds->seg_coef[sg];
   PDSteelResponse(&m->steel[m->bonds->seg_bar[sg]], s, m->sp_n[sg], m->ruptured_n[sg], g, gp, sp, rupt);
+  if (!*rupt) *gp = PetscMax(*gp, m->scene->steel_tangent_floor); /* a yielded segment's slope, floored (-pd_steel_tangent_floor) */
   *g *= c;
   *gp *= c;
 }
@@ -569,6 +570,25 @@ static inline PetscBool SlopeElastic(const PDModel *m, PetscInt e, PetscReal s) 
   return (!m->bonds->seg || m->bonds->seg[e] < 0) && ConcreteElastic(m, e, s) ? PETSC_TRUE : PETSC_FALSE;
 }
 
+/* A bar segment's share of the end-slope term of a step from stretch s0 to s1 (PDModelTangentChangeBlock): 12 times
+   its exact work over the step less the trapezoid's, so that the step's work is exact for the steel. Its force
+   bends where the step meets the yield surface, and the cubic of the end slopes, which suits the concrete's
+   smooth laws, puts the kink's corner in the wrong place (a segment that yields in a long step was given
+   several times the work it took). The return mapping from the committed state is the step's path; a
+   segment that ruptures in the step keeps the one-sided slopes. */
+static inline PetscReal SegmentStepTerm(const PDModel *m, PetscInt sg, PetscReal L0, PetscReal s0, PetscReal s1) {
+  const PDSteel  *st = &m->steel[m->bonds->seg_bar[sg]];
+  const PetscReal c = m->bonds->seg_coef[sg], sp0 = m->sp_n[sg];
+  PetscReal       g1, gp, sp1;
+  PetscBool       rupt;
+
+  if (m->ruptured_n[sg]) return 0;
+  PDSteelResponse(st, s1, sp0, PETSC_FALSE, &g1, &gp, &sp1, &rupt);
+  if (rupt) return c * L0 * (PDSteelSlopeToward(st, s0, s1 - s0, sp0, PETSC_FALSE) - gp) * (s1 - s0) * (s1 - s0);
+  const PetscReal work = PDSteelStored(st, s1, sp1) - PDSteelStored(st, s0, sp0) + st->sy * PetscAbsReal(sp1 - sp0);
+  return 12 * c * L0 * (work - 0.5 * ((s0 - sp0) + g1) * (s1 - s0));
+}
+
 /* Small kinematics: adds to *sum, bond by bond in bond order, the part of du . (K(u0) - K(u1)) du, du = u1 - u0,
    of the bonds e0 .. e0 + n - 1 this rank counts, both tangents with the history the model holds (the
    end-slope term of an accepted step's work, path.c). s1 are the bonds' stretches at u1 and s0 at u0
@@ -595,10 +615,11 @@ void PDModelTangentChangeBlock(const PDModel *m, const PetscScalar *u0, const Pe
       d1 += xi[r] * PetscRealPart(u1[bs * j + r] - u1[bs * i + r]);
     }
     if (!s0 && elastic1 && SlopeElastic(m, e, d0 / L2)) continue;
-    BondForce(m, e, d0 / L2, &g, &gp0);
-    BondForce(m, e, d1 / L2, &g, &gp1);
+    ConcreteForce(m, e, d0 / L2, &g, &gp0);
+    ConcreteForce(m, e, d1 / L2, &g, &gp1);
     dd = d1 - d0;
     *sum += (gp0 - gp1) / PetscSqrtReal(L2) * dd * dd / L2;
+    if (bd->seg && bd->seg[e] >= 0) *sum += SegmentStepTerm(m, bd->seg[e], PetscSqrtReal(L2), d0 / L2, d1 / L2);
   }
 }
 

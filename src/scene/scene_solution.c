@@ -117,7 +117,9 @@ static PetscErrorCode ReadImplicit(PetscOptionItems *PetscOptionsObject, MPI_Com
   sc->predictor = PETSC_TRUE;
   PetscCall(PDOptionBool(PetscOptionsObject, sc, "-pd_predictor", &sc->predictor, NULL));
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_tangent", &t, NULL));
-  sc->tangent = (PDTangent)t;
+  sc->tangent             = (PDTangent)t;
+  sc->steel_tangent_floor = 1e-3;
+  PetscCall(PDOptionReal(PetscOptionsObject, sc, "-pd_steel_tangent_floor", &sc->steel_tangent_floor, NULL));
   PetscCall(PDOptionEnum(PetscOptionsObject, sc, "-pd_pc_matrix", &t, NULL));
   sc->pc_matrix = (PDPCMatrix)t;
   t             = 0;

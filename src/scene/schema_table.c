@@ -503,6 +503,14 @@ const PDOptionSpec PDOptionSchema[] = {
      .def    = "consistent",
      .when   = PD_WHEN_IMPLICIT,
      .help   = "Tangent of softening bonds: consistent (GMRES by default: the tangent is indefinite) or secant (CG)"},
+    {.name  = "-pd_steel_tangent_floor",
+     .type  = PD_OPTION_REAL,
+     .def   = "1e-3",
+     .range = "[0, 1)",
+     .when  = PD_WHEN_IMPLICIT,
+     .help  = "Least slope, over E, that a yielded bar segment gives Newton's tangent (its force follows its law): a perfectly plastic "
+              "bar's consistent slope is 0, and two yielded segments meeting at a bond-slip node on the bond law's plateau leave the "
+              "tangent singular there (docs/reinforcement.md); 0: the consistent slope"},
     {.name   = "-pd_pc_matrix",
      .type   = PD_OPTION_ENUM,
      .values = PDPCMatrixNames,
