@@ -509,8 +509,8 @@ const PDOptionSpec PDOptionSchema[] = {
      .range = "[0, 1)",
      .when  = PD_WHEN_IMPLICIT,
      .help  = "Least slope, over E, that a yielded bar segment gives Newton's tangent (its force follows its law): a perfectly plastic "
-              "bar's consistent slope is 0, and two yielded segments meeting at a bond-slip node on the bond law's plateau leave the "
-              "tangent singular there (docs/reinforcement.md); 0: the consistent slope"},
+              "bar's consistent slope is 0, and a member whose bar has yielded across an open crack is then a mechanism that path "
+              "following cannot step along (docs/reinforcement.md); 0: the consistent slope"},
     {.name   = "-pd_pc_matrix",
      .type   = PD_OPTION_ENUM,
      .values = PDPCMatrixNames,
