@@ -530,6 +530,12 @@ int main(int argc, char **argv) {
                       &err, nneg));
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "|Jv - FD|/|Jv| < 1e-6: nonlinear concrete with a yielding steel bar", err, 1e-6);
     Check(nplastic > 0 ? PETSC_TRUE : PETSC_FALSE, "the state has bar segments on their plastic branch", (PetscReal)nplastic, 1);
+    /* perfectly plastic steel: its consistent slope 0 where the tangent's floor is off */
+    PetscCall(RunCase("-pd_law nonlinear -pd_bar0_line 0,0.0125,0.0075,0.04,0.0125,0.0075 -pd_bar0_diameter 0.004 -pd_bar0_fy 30e6 "
+                      "-pd_steel_tangent_floor 0",
+                      &err, nneg));
+    Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "|Jv - FD|/|Jv| < 1e-6: a perfectly plastic bar, the tangent's floor off", err, 1e-6);
+    Check(nplastic > 0 ? PETSC_TRUE : PETSC_FALSE, "the state has bar segments on their plastic branch", (PetscReal)nplastic, 1);
   }
   if (!products_only) {
     /* the check can fail: the secant is not the derivative of a softening residual */
