@@ -23,6 +23,32 @@ static int CompareCandidates(const void *pa, const void *pb) {
   return a->id < b->id ? -1 : (a->id > b->id ? 1 : 0);
 }
 
+/* Moves the k best of c[0..n-1] (CompareCandidates' order, a total one) to c[0..k-1], in no particular order:
+   a quickselect, linear in n on average. Only the k best are read, and sorting every candidate cost n log n
+   per limiter stage: in the brittle drop of a large model, where nearly every bond of the tension face is a
+   candidate, stack samples found most of a stage there. The set selected is the sort's. */
+static void SelectBest(Candidate *c, PetscInt n, PetscInt k) {
+  PetscInt lo = 0, hi = n - 1;
+  while (lo < hi && k > lo && k <= hi) {
+    const PetscInt mid = lo + (hi - lo) / 2;
+    Candidate      pivot, t;
+    PetscInt       store = lo;
+    /* the median of three as the pivot, moved to hi */
+    if (CompareCandidates(&c[mid], &c[lo]) < 0) t = c[mid], c[mid] = c[lo], c[lo] = t;
+    if (CompareCandidates(&c[hi], &c[lo]) < 0) t = c[hi], c[hi] = c[lo], c[lo] = t;
+    if (CompareCandidates(&c[mid], &c[hi]) < 0) t = c[mid], c[mid] = c[hi], c[hi] = t;
+    pivot = c[hi];
+    for (PetscInt i = lo; i < hi; i++)
+      if (CompareCandidates(&c[i], &pivot) < 0) t = c[i], c[i] = c[store], c[store++] = t;
+    c[hi] = c[store], c[store] = pivot; /* c[lo..store-1] come before the pivot, c[store+1..hi] after it */
+    if (store + 1 == k || store == k) return;
+    if (store + 1 < k)
+      lo = store + 1;
+    else
+      hi = store - 1;
+  }
+}
+
 static int CompareIds(const void *pa, const void *pb) {
   const PetscInt64 a = *(const PetscInt64 *)pa, b = *(const PetscInt64 *)pb;
   return a < b ? -1 : (a > b ? 1 : 0);
@@ -132,8 +158,8 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     *granted = *ncandidates;
   } else {
     /* each rank's best max_events cover the global best max_events */
-    qsort(mine, (size_t)nmine, sizeof(Candidate), CompareCandidates);
     ntake = PetscMin(nmine, max_events);
+    SelectBest(mine, nmine, ntake);
     PetscCallMPI(MPI_Comm_size(comm, &size));
     PetscCall(PetscMalloc2(size, &counts, size, &displs));
     nsend = (PetscMPIInt)(ntake * (PetscInt)sizeof(Candidate));
@@ -143,7 +169,7 @@ PetscErrorCode PDModelGrantEvents(PDModel *m, Vec u, PetscInt max_events, PetscI
     nall = (displs[size - 1] + counts[size - 1]) / (PetscInt)sizeof(Candidate);
     PetscCall(PetscMalloc2(nall, &all, max_events, &ids));
     PetscCallMPI(MPI_Allgatherv(mine, nsend, MPI_BYTE, all, counts, displs, MPI_BYTE, comm));
-    qsort(all, (size_t)nall, sizeof(Candidate), CompareCandidates);
+    SelectBest(all, nall, max_events);
     for (PetscInt k = 0; k < max_events; k++) ids[k] = all[k].id;
     qsort(ids, (size_t)max_events, sizeof(PetscInt64), CompareIds);
     for (PetscInt k = 0; k < held.n; k++) {
