@@ -143,7 +143,3 @@ void PDSteelResponse(const PDSteel *, PetscReal s, PetscReal sp_n, PetscBool bro
 /* Energy per unit E A and unit length at stretch s and plastic stretch sp: stored, elastic and in the
    hardening, (s - sp)^2 / 2 + H sp^2 / 2. Plastic flow dissipates s_y per unit of accumulated |d sp|. */
 PetscReal PDSteelStored(const PDSteel *, PetscReal s, PetscReal sp);
-/* The law's slope over E A at stretch s from the committed state, on the side of s + ds: on the yield surface
-   and loading on, the plastic slope (the return mapping gives the elastic one there). The one-sided slopes
-   at both ends of a step are what the end-slope term of the step's work needs (path.c). */
-PetscReal PDSteelSlopeToward(const PDSteel *, PetscReal s, PetscReal ds, PetscReal sp_n, PetscBool broken_n);

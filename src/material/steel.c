@@ -29,11 +29,3 @@ PetscReal PDSteelStored(const PDSteel *st, PetscReal s, PetscReal sp) {
   const PetscReal H = st->h / (1 - st->h);
   return 0.5 * (s - sp) * (s - sp) + 0.5 * H * sp * sp;
 }
-
-PetscReal PDSteelSlopeToward(const PDSteel *st, PetscReal s, PetscReal ds, PetscReal sp_n, PetscBool broken_n) {
-  const PetscReal H = st->h / (1 - st->h), xi = s - sp_n - H * sp_n;
-
-  if (broken_n || s >= st->su) return 0;
-  /* on the surface to round-off of the stretch (an accepted state's return mapping left it there) */
-  return PetscAbsReal(xi) >= st->sy * (1 - 1e-9) && xi * ds > 0 ? st->h : 1;
-}

@@ -574,19 +574,21 @@ static inline PetscBool SlopeElastic(const PDModel *m, PetscInt e, PetscReal s) 
    its exact work over the step less the trapezoid's, so that the step's work is exact for the steel. Its force
    bends where the step meets the yield surface, and the cubic of the end slopes, which suits the concrete's
    smooth laws, puts the kink's corner in the wrong place (a segment that yields in a long step was given
-   several times the work it took). The return mapping from the committed state is the step's path; a
-   segment that ruptures in the step keeps the one-sided slopes. */
+   several times the work it took). The work is what the history commit books for the step (SegmentForce's
+   return mapping from the committed state, SegmentDissipation): the change of the stored energy plus the
+   dissipated. */
 static inline PetscReal SegmentStepTerm(const PDModel *m, PetscInt sg, PetscReal L0, PetscReal s0, PetscReal s1) {
   const PDSteel  *st = &m->steel[m->bonds->seg_bar[sg]];
   const PetscReal c = m->bonds->seg_coef[sg], sp0 = m->sp_n[sg];
-  PetscReal       g1, gp, sp1;
+  PetscReal       g0, g1, gp, sp1;
   PetscBool       rupt;
 
   if (m->ruptured_n[sg]) return 0;
-  PDSteelResponse(st, s1, sp0, PETSC_FALSE, &g1, &gp, &sp1, &rupt);
-  if (rupt) return c * L0 * (PDSteelSlopeToward(st, s0, s1 - s0, sp0, PETSC_FALSE) - gp) * (s1 - s0) * (s1 - s0);
-  const PetscReal work = PDSteelStored(st, s1, sp1) - PDSteelStored(st, s0, sp0) + st->sy * PetscAbsReal(sp1 - sp0);
-  return 12 * c * L0 * (work - 0.5 * ((s0 - sp0) + g1) * (s1 - s0));
+  g0 = c * (s0 - sp0);
+  SegmentForce(m, sg, s1, &g1, &gp, &sp1, &rupt);
+  const PetscReal work =
+      c * L0 * ((rupt ? 0 : PDSteelStored(st, s1, sp1)) - PDSteelStored(st, s0, sp0)) + SegmentDissipation(m, sg, L0, s1, sp1, rupt);
+  return 12 * (work - 0.5 * L0 * (g0 + g1) * (s1 - s0));
 }
 
 /* Small kinematics: adds to *sum, bond by bond in bond order, the part of du . (K(u0) - K(u1)) du, du = u1 - u0,
