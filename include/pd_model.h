@@ -109,6 +109,13 @@ typedef enum {
 } PDBranch;
 #define PD_BRANCH_MASK 3 /* the branch; the bit above marks a bond flipped once in this step */
 #define PD_BRANCH_FLIPPED 4
+/* A damaged bond is elastic in compression (its crack closed) and on its secant in tension (open): a kink at
+   s = 0 where a crack's faces slide. An IMPL-EX step whose Newton cycles freezes each damaged bond on the side
+   it had at the last accepted step (PDModelFreezeSides): open takes the secant in compression too, closed the
+   elastic slope in tension too, and the step's equations are linear (docs/arclength.md, "Crack faces"). */
+#define PD_BRANCH_OPEN 8
+#define PD_BRANCH_CLOSED 16
+#define PD_BRANCH_SIDE (PD_BRANCH_OPEN | PD_BRANCH_CLOSED)
 
 PetscErrorCode PDModelCreate(const PDScene *, const PDLattice *, const PDBonds *, PDModel *);
 /* Mass of a local node (kg): its material's density times the cell, or for a bar node the steel of its share of the bar. */
@@ -145,6 +152,8 @@ PetscErrorCode PDModelConfine(PDModel *);
 PetscErrorCode PDModelRestoreLevels(PDModel *);
 PetscErrorCode PDModelFreezeBranches(PDModel *, Vec u, unsigned char *branch, PetscInt *nfrozen);
 PetscErrorCode PDModelFlipBranches(PDModel *, Vec u, PetscInt *nflipped, PetscInt *nkink);
+PetscErrorCode PDModelFreezeSides(PDModel *, Vec u, PetscInt *nfrozen);
+PetscErrorCode PDModelFreeSides(PDModel *);
 PetscErrorCode PDModelCountDamage(PDModel *);
 PetscErrorCode PDModelTangentApply(PDModel *, Vec u, Vec x, Vec y);
 PetscErrorCode PDModelTangentApplyScalars(PDModel *, Vec u, const PetscReal *ka, const PetscReal *kb, PetscBool scaled, PetscBool eliminate,

@@ -17,12 +17,14 @@ static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDL
    needed: no softening; compression without bond-slip links, which needs no law (most bonds of a loaded body);
    an elastic law; or stretch and history below every threshold of its material (PDModel onset). */
 static inline PetscBool ConcreteElastic(const PDModel *m, PetscInt e, PetscReal s) {
-  const PDLaw *law;
-  PetscReal    a;
-  if (!m->softening || (s < 0 && !m->nslip)) return PETSC_TRUE;
+  const unsigned side = m->branch ? m->branch[e] & PD_BRANCH_SIDE : 0; /* a frozen crack side (PD_BRANCH_OPEN) */
+  const PDLaw   *law;
+  PetscReal      a;
+  if (!m->softening || side == PD_BRANCH_CLOSED || (s < 0 && !m->nslip && !side)) return PETSC_TRUE;
   law = &m->law[m->bonds->material[e]];
   a   = PDLawHistoryStretch(law, s);
-  return a < 0 || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]] ? PETSC_TRUE : PETSC_FALSE;
+  return (a < 0 && !side) || law->kind == PD_LAW_ELASTIC || PetscMax(m->kappa[e], a) < m->onset[m->bonds->material[e]] ? PETSC_TRUE
+                                                                                                                       : PETSC_FALSE;
 }
 
 /* Scalar force g(s) of a bond's concrete and its slope. History kappa_n and the level the limiter allows

@@ -40,6 +40,8 @@ typedef struct {
 static PetscReal EquilibriumRtol(const PDScene *sc, PetscBool implex) {
   return sc->arc_rtol > 0 ? sc->arc_rtol : (implex ? PD_IMPLEX_RTOL : PD_ARC_RTOL);
 }
+/* how often an IMPL-EX step gives its damaged bonds their sides again before it leaves them free (Step) */
+#define PD_IMPLEX_RESIDES 10
 /* Krylov tolerance of the predictor's direction where the augmented corrector follows: the direction only
    starts the step and estimates the corrector's Schur complement, and the equilibrium the corrector
    reaches does not depend on it (docs/arclength.md, "Linear tolerances") */
@@ -406,8 +408,9 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   PDModel        *m     = a->m;
   const PetscInt  maxit = 25;
   PetscReal       dlam, rnorm = PETSC_MAX_REAL, fnorm, damp = 1;
-  PetscBool       fine;
-  const PetscBool aug = a->augmented && (type == PD_ARC_CMOD || type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool       fine, sides = PETSC_FALSE;
+  PetscInt        resides = 0;
+  const PetscBool aug     = a->augmented && (type == PD_ARC_CMOD || type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
 
   PetscFunctionBeginUser;
   *ok               = PETSC_FALSE;
@@ -456,6 +459,16 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
                             (double)rnorm, nfrozen));
         PetscCall(Residual(a, &rnorm, &fnorm));
         rises = 0;
+      } else if (a->kx_n && !sides && !resides) {
+        /* IMPL-EX's secant has one kink left, a damaged bond's at zero stretch, where the faces of a sliding
+           crack close and open from one iterate to the next: each takes the side it had at the last step */
+        PetscCall(PDModelFreezeSides(m, p->u_n, &nfrozen));
+        PetscCall(PetscInfo(NULL,
+                            "arclength: Newton cycles at |R| %g: %" PetscInt_FMT " damaged bonds frozen on their side of zero stretch\n",
+                            (double)rnorm, nfrozen));
+        sides = PETSC_TRUE;
+        PetscCall(Residual(a, &rnorm, &fnorm));
+        rises = 0;
       } else {
         damp = 0.5;
         PetscCall(PetscInfo(NULL, "arclength: Newton cycles at |R| %g: updates halved for the rest of the step\n", (double)rnorm));
@@ -491,8 +504,36 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
         rnorm = rfree;
     }
     if (rnorm <= tol && a->kx_n) { /* IMPL-EX: the secant step is the step; no limiter */
-      *ok = PETSC_TRUE;
-      PetscFunctionReturn(0);
+      PetscBool settled = PETSC_TRUE;
+      if (sides) {
+        /* equilibrium on frozen sides holds for the real law once every bond lies on the side it was given;
+           otherwise each takes the side it is on and Newton goes on (an active set) */
+        PetscReal rfree;
+        PetscCall(PDModelFreeSides(m));
+        sides = PETSC_FALSE;
+        PetscCall(Residual(a, &rfree, &fnorm));
+        if (rfree > tol && ++resides <= PD_IMPLEX_RESIDES) {
+          PetscInt nfrozen;
+          PetscCall(PDModelFreezeSides(m, a->u, &nfrozen));
+          PetscCall(PetscInfo(NULL,
+                              "arclength: frozen sides in equilibrium, real law |R| %g: %" PetscInt_FMT " damaged bonds frozen again\n",
+                              (double)rfree, nfrozen));
+          sides   = PETSC_TRUE;
+          settled = PETSC_FALSE;
+          k       = 0;
+          rises   = 0;
+          PetscCall(Residual(a, &rnorm, &fnorm));
+        } else if (rfree > tol) {
+          settled = PETSC_FALSE; /* the sides cycle: the real law with halved updates, as before the freeze */
+          damp    = 0.5;
+          rnorm   = rfree;
+        } else
+          rnorm = rfree;
+      }
+      if (settled) {
+        *ok = PETSC_TRUE;
+        PetscFunctionReturn(0);
+      }
     }
     if (rnorm <= tol) {
       PetscCall(PDModelGrantEvents(m, a->u, m->limiter_max, &ncand, &granted));

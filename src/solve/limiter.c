@@ -359,6 +359,38 @@ PetscErrorCode PDModelFlipBranches(PDModel *m, Vec u, PetscInt *nflipped, PetscI
   PetscFunctionReturn(0);
 }
 
+/* Freezes every damaged bond of the frozen branches on the side of zero stretch it has at u (PD_BRANCH_OPEN,
+   PD_BRANCH_CLOSED); a bond-slip link, symmetric in its slip, has no such kink. */
+PetscErrorCode PDModelFreezeSides(PDModel *m, Vec u, PetscInt *nfrozen) {
+  unsigned char     *branch = m->branch;
+  const PetscScalar *ul;
+  Vec                uloc;
+  PetscInt           mine = 0;
+
+  PetscFunctionBeginUser;
+  PetscCheck(branch, m->lat->comm, PETSC_ERR_ORDER, "no frozen branches to give sides");
+  PetscCall(PDModelScatterToLocal(m, u, &ul, &uloc));
+  for (PetscInt e = 0; e < m->bonds->nbonds; e++) {
+    const PDLaw    *law = &m->law[m->bonds->material[e]];
+    const PDLawBond tb  = PDModelBondThresholds(m, e, law);
+    if (law->kind == PD_LAW_ELASTIC || law->kind == PD_LAW_SLIP || m->kappa[e] <= tb.s0) continue;
+    branch[e] = (unsigned char)((branch[e] & ~PD_BRANCH_SIDE) | (PDModelBondStretch(m, ul, e) < 0 ? PD_BRANCH_CLOSED : PD_BRANCH_OPEN));
+    if (PDBondCountedHere(m->lat, m->bonds, e)) mine++;
+  }
+  PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
+  PetscCall(MPIU_Allreduce(&mine, nfrozen, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  m->nchanged = -1; /* forces changed without a record: the next residual runs the whole loop */
+  PetscFunctionReturn(0);
+}
+
+/* Back to the real law's side for every bond. */
+PetscErrorCode PDModelFreeSides(PDModel *m) {
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; m->branch && e < m->bonds->nbonds; e++) m->branch[e] &= (unsigned char)~PD_BRANCH_SIDE;
+  m->nchanged = -1;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode PDModelRestoreLevels(PDModel *m) {
   PetscFunctionBeginUser;
   if (m->softening) PetscCall(PetscArraycpy(m->level, m->level_n, m->bonds->nbonds));
