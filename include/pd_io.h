@@ -47,6 +47,7 @@ typedef struct {
   /* path following's equilibrium tolerances (|R| over |f_int|) of implicit and IMPL-EX steps; 0: no path following */
   PetscReal arc_rtol, implex_rtol;
   PetscInt  implex_insensitive; /* IMPL-EX steps taken once a cut had left their damage error where it was */
+  PetscInt  implex_faces;       /* IMPL-EX steps whose Newton froze its damaged bonds' sides of zero stretch */
   /* explicit path */
   PetscReal eig_est, eig_bound; /* largest eigenvalue of M^-1 K: power-iteration estimate, Gershgorin bound (1/s^2) */
   PetscReal dt_stable, dt;      /* stable step 2/sqrt(eig_est) and step used (s) */

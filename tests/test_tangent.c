@@ -46,35 +46,44 @@ static PetscErrorCode ModelDestroy(PDScene *sc, PDLattice *lat, PDBonds *bd, PDM
   PetscFunctionReturn(0);
 }
 
+/* A random displacement u of the model (its boundary values applied) and a random direction v, both of a few
+   times s0 dx: stretches from compression to well into softening. */
+static PetscErrorCode RandomPair(PDModel *m, PetscReal dx, unsigned long seed, Vec *u, Vec *v) {
+  PetscRandom rnd;
+
+  PetscFunctionBeginUser;
+  PetscCall(VecDuplicate(m->f_ref, u));
+  PetscCall(VecDuplicate(*u, v));
+  PetscCall(RandomCreate(seed, &rnd));
+  PetscCall(VecSetRandom(*u, rnd));
+  PetscCall(VecScale(*u, 4e-4 * dx));
+  PetscCall(VecSetRandom(*v, rnd));
+  PetscCall(VecScale(*v, 4e-4 * dx));
+  PetscCall(PDModelApplyBoundaryValues(m, 0, *u));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscFunctionReturn(0);
+}
+
 /* err: |J v - FD| / |J v|. With -pd_pc_matrix secant the tangent is assembled next to its preconditioning
    matrix; nneg counts the bonds with a negative axial stiffness in each (the tangent's, then the secant's). */
 static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2]) {
-  PDScene     sc;
-  PDLattice   lat;
-  PDBonds     bd;
-  PDModel     m;
-  Mat         J, P;
-  Vec         u, v, w, Jv, Rp, Rm;
-  PetscRandom rnd;
-  PetscReal   h = 1e-6, nJv, ndiff;
-  PetscReal  *s;
+  PDScene    sc;
+  PDLattice  lat;
+  PDBonds    bd;
+  PDModel    m;
+  Mat        J, P;
+  Vec        u, v, w, Jv, Rp, Rm;
+  PetscReal  h = 1e-6, nJv, ndiff;
+  PetscReal *s;
 
   PetscFunctionBeginUser;
   PetscCall(ModelCreate(extra, &sc, &lat, &bd, &m));
   PetscCall(PDModelCreateOperators(&m, &J, &P)); /* under small kinematics J is the product from the bond scalars */
-  PetscCall(VecDuplicate(m.f_ref, &u));
-  PetscCall(VecDuplicate(u, &v));
+  PetscCall(RandomPair(&m, sc.dx, 7, &u, &v));
   PetscCall(VecDuplicate(u, &w));
   PetscCall(VecDuplicate(u, &Jv));
   PetscCall(VecDuplicate(u, &Rp));
   PetscCall(VecDuplicate(u, &Rm));
-  PetscCall(RandomCreate(7, &rnd));
-  /* displacements of a few times s0 dx: stretches from compression to well into softening */
-  PetscCall(VecSetRandom(u, rnd));
-  PetscCall(VecScale(u, 4e-4 * sc.dx));
-  PetscCall(VecSetRandom(v, rnd));
-  PetscCall(VecScale(v, 4e-4 * sc.dx));
-  PetscCall(PDModelApplyBoundaryValues(&m, 0, u));
   nplastic = 0;
   if (m.softening || bd.nseg) {
     const PetscScalar *ul;
@@ -115,7 +124,6 @@ static PetscErrorCode RunCase(const char *extra, PetscReal *err, PetscInt nneg[2
   PetscCall(VecAXPY(Rp, -1, Jv));
   PetscCall(VecNorm(Rp, NORM_2, &ndiff));
   *err = ndiff / nJv;
-  PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(VecDestroy(&u));
   PetscCall(VecDestroy(&v));
   PetscCall(VecDestroy(&w));
@@ -497,6 +505,84 @@ static PetscErrorCode ForceByChange(const char *extra, PetscReal *diff, PetscInt
   PetscFunctionReturn(0);
 }
 
+/* Crack faces frozen on their side of zero stretch (PDModelFreezeSides, IMPL-EX): every bond on its secant at a
+   history above s0, as in an IMPL-EX step, so that the only kink left is a damaged bond's at s = 0. At u the
+   frozen residual equals the real law's (every bond is on the side it was given); over a step 2h large enough
+   to take bonds across zero the frozen residual changes by exactly 2h J v (its equations are linear), where
+   the real law's does not. Returns the three relative differences, the bonds frozen and those closed. */
+static PetscErrorCode FrozenSides(PetscReal *at_u, PetscReal *frozen, PetscReal *free, PetscInt *nfrozen, PetscInt *nclosed) {
+  PDScene         sc;
+  PDLattice       lat;
+  PDBonds         bd;
+  PDModel         m;
+  Mat             J, P;
+  Vec             u, v, w, Jv, Rp, Rm, R0;
+  const PetscReal h = 2;
+  unsigned char  *branch;
+  PetscReal      *s, n0, nJv;
+
+  PetscFunctionBeginUser;
+  PetscCall(ModelCreate("-pd_law nonlinear", &sc, &lat, &bd, &m));
+  PetscCall(PDModelCreateOperators(&m, &J, &P));
+  PetscCall(RandomPair(&m, sc.dx, 11, &u, &v));
+  PetscCall(VecDuplicate(u, &w));
+  PetscCall(VecDuplicate(u, &Jv));
+  PetscCall(VecDuplicate(u, &Rp));
+  PetscCall(VecDuplicate(u, &Rm));
+  PetscCall(VecDuplicate(u, &R0));
+  {
+    const PetscScalar *ul;
+    Vec                loc;
+    PetscCall(PetscMalloc2(bd.nbonds, &s, bd.nbonds, &branch));
+    PetscCall(PDModelScatterToLocal(&m, u, &ul, &loc));
+    for (PetscInt e = 0; e < bd.nbonds; e++) s[e] = PDModelBondStretch(&m, ul, e);
+    PetscCall(PDModelRestoreLocal(&m, &ul, &loc));
+    *nclosed = 0;
+    for (PetscInt e = 0; e < bd.nbonds; e++) {
+      m.kappa[e] = 1.5 * PetscAbsReal(s[e]); /* damaged on either side of zero, above its stretch: on its secant */
+      m.level[e] = PD_BOND_SOFTENING;
+      branch[e]  = PD_BRANCH_SECANT;
+      *nclosed += s[e] < 0 && m.kappa[e] > PDModelBondThresholds(&m, e, &m.law[bd.material[e]]).s0;
+    }
+  }
+  m.branch = branch;
+  PetscCall(PDModelResidual(NULL, u, R0, &m)); /* the real law at u */
+  PetscCall(PDModelFreezeSides(&m, u, nfrozen));
+  PetscCall(PDModelResidual(NULL, u, Rp, &m));
+  PetscCall(VecNorm(R0, NORM_2, &n0));
+  PetscCall(VecAXPY(Rp, -1, R0));
+  PetscCall(VecNorm(Rp, NORM_2, at_u));
+  *at_u /= n0;
+  PetscCall(PDModelJacobian(NULL, u, J, P, &m));
+  PetscCall(MatMult(J, v, Jv));
+  PetscCall(VecScale(Jv, 2 * h));
+  PetscCall(VecNorm(Jv, NORM_2, &nJv));
+  for (PetscInt k = 0; k < 2; k++) { /* frozen, then the real law (the sides stay noted, unused) */
+    PetscReal *out = k ? free : frozen;
+    if (k) PetscCall(PDModelFreeSides(&m));
+    PetscCall(VecWAXPY(w, h, v, u));
+    PetscCall(PDModelResidual(NULL, w, Rp, &m));
+    PetscCall(VecWAXPY(w, -h, v, u));
+    PetscCall(PDModelResidual(NULL, w, Rm, &m));
+    PetscCall(VecAXPY(Rp, -1, Rm));
+    PetscCall(VecAXPY(Rp, -1, Jv));
+    PetscCall(VecNorm(Rp, NORM_2, out));
+    *out /= nJv;
+  }
+  m.branch = NULL;
+  PetscCall(PetscFree2(s, branch));
+  PetscCall(VecDestroy(&u));
+  PetscCall(VecDestroy(&v));
+  PetscCall(VecDestroy(&w));
+  PetscCall(VecDestroy(&Jv));
+  PetscCall(VecDestroy(&Rp));
+  PetscCall(VecDestroy(&Rm));
+  PetscCall(VecDestroy(&R0));
+  PetscCall(PDModelDestroyOperators(&J, &P));
+  PetscCall(ModelDestroy(&sc, &lat, &bd, &m));
+  PetscFunctionReturn(0);
+}
+
 int main(int argc, char **argv) {
   const char *cases[] = {
       "-pd_law elastic -pd_kinematics finite",
@@ -536,6 +622,16 @@ int main(int argc, char **argv) {
                       &err, nneg));
     Check(err < 1e-6 ? PETSC_TRUE : PETSC_FALSE, "|Jv - FD|/|Jv| < 1e-6: a perfectly plastic bar, the tangent's floor off", err, 1e-6);
     Check(nplastic > 0 ? PETSC_TRUE : PETSC_FALSE, "the state has bar segments on their plastic branch", (PetscReal)nplastic, 1);
+  }
+  if (!products_only) {
+    PetscReal at_u, frozen, free;
+    PetscInt  nfrozen, nclosed;
+    PetscCall(FrozenSides(&at_u, &frozen, &free, &nfrozen, &nclosed));
+    Check(nfrozen > 0 && nclosed > 0 ? PETSC_TRUE : PETSC_FALSE, "damaged bonds frozen on their sides, some of them closed",
+          (PetscReal)nclosed, 1);
+    Check(at_u < 1e-12 ? PETSC_TRUE : PETSC_FALSE, "frozen sides at their own state: the real law's residual (< 1e-12)", at_u, 1e-12);
+    Check(frozen < 1e-10 ? PETSC_TRUE : PETSC_FALSE, "frozen sides: the residual linear across zero stretch (< 1e-10)", frozen, 1e-10);
+    Check(free > 1e-3 ? PETSC_TRUE : PETSC_FALSE, "the real law is not: its crack faces kink (> 1e-3)", free, 1e-3);
   }
   if (!products_only) {
     /* the check can fail: the secant is not the derivative of a softening residual */

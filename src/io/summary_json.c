@@ -286,8 +286,9 @@ PetscErrorCode PDSummaryWrite(MPI_Comm comm, const PDModel *m, const PDRecord *r
   if (rec->arc_rtol > 0)
     PetscCall(PetscFPrintf(
         comm, fp,
-        "  \"equilibrium_rtol\": {\"implicit_steps\": %.3e, \"implex_steps\": %.3e},\n  \"implex_insensitive_steps\": %" PetscInt_FMT ",\n",
-        (double)rec->arc_rtol, (double)rec->implex_rtol, rec->implex_insensitive));
+        "  \"equilibrium_rtol\": {\"implicit_steps\": %.3e, \"implex_steps\": %.3e},\n  \"implex_insensitive_steps\": %" PetscInt_FMT
+        ",\n  \"implex_faces_steps\": %" PetscInt_FMT ",\n",
+        (double)rec->arc_rtol, (double)rec->implex_rtol, rec->implex_insensitive, rec->implex_faces));
   if (rec->restart_from[0]) {
     PetscCall(PDEscapeJSON(rec->restart_from, &text));
     PetscCall(PetscFPrintf(comm, fp, "  \"restart\": {\"from\": %s, \"step\": %" PetscInt_FMT "},\n", text, rec->restart_step));

@@ -83,6 +83,7 @@ typedef struct {
   Vec         xg;       /* IMPL-EX under the augmented corrector: the last step's first correction (-pd_arclength_guess) */
   PetscBool   have_xg;
   PetscInt    rejects;      /* IMPL-EX steps made again shorter since the last accepted one */
+  PetscBool   faces;        /* the last IMPL-EX step froze its damaged bonds' sides (PDModelFreezeSides) */
   PetscReal   reject_err;   /* the damage error the last of them would leave if it scaled with the step */
   PetscBool   root_flipped; /* this step is being taken again with the predictor's other root */
   PetscReal   dlam_pred;    /* the load-factor change of the step's predictor */
@@ -417,6 +418,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   a->its            = 0;
   a->lits           = 0;
   m->ka_at_residual = PETSC_FALSE; /* the last residual's tangent scalars had the history of the step before */
+  a->faces          = PETSC_FALSE;
   if (a->kx_n) PetscCall(ImplexExtrapolate(a, a->len_prev > 0 ? dl / a->len_prev : 0));
   PetscCall(VecCopy(p->u_n, a->u));
   a->lam    = p->lambda_n;
@@ -466,7 +468,8 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
         PetscCall(PetscInfo(NULL,
                             "arclength: Newton cycles at |R| %g: %" PetscInt_FMT " damaged bonds frozen on their side of zero stretch\n",
                             (double)rnorm, nfrozen));
-        sides = PETSC_TRUE;
+        sides    = PETSC_TRUE;
+        a->faces = PETSC_TRUE;
         PetscCall(Residual(a, &rnorm, &fnorm));
         rises = 0;
       } else {
@@ -1004,6 +1007,7 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     PetscCall(VecCopy(path.u_n, u_prev));
     lam_prev = path.lambda_n;
     if (insensitive) rec->implex_insensitive++;
+    if (a.faces) rec->implex_faces++;
     PetscCall(PDPathAccept(m, rec, &path, a.u, a.lam, a.its, a.lits, &row));
     if (a.kx_n) { /* the histories move on by a step: the oldest buffer takes the new one */
       PetscReal *t = a.kx_prev;
