@@ -63,6 +63,7 @@ typedef struct {
   PetscReal     *shift;                   /* [nbonds] rise of the thresholds under compression (-pd_fc), or NULL */
   Vec            dilatation;              /* ghosted nodal dilatation for that rise, or NULL */
   unsigned char *branch;                  /* path following: per-bond PDBranch frozen for a stage, or NULL */
+  PetscBool      faces;                   /* branch's PD_BRANCH_SIDE bits are in force (PDModelFreezeSides) */
   PetscInt       limiter_max;             /* bond events granted per Newton iteration; 0: no cap */
   PetscReal      pc_reach;                /* longest bond of the preconditioning matrix, in grid spacings; 0: every bond */
   PetscBool      commit_history;          /* explicit path: every force evaluation raises kappa */

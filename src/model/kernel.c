@@ -17,7 +17,7 @@ static inline PetscReal EffectiveHistory(const PDModel *m, PetscInt e, const PDL
    needed: no softening; compression without bond-slip links, which needs no law (most bonds of a loaded body);
    an elastic law; or stretch and history below every threshold of its material (PDModel onset). */
 static inline PetscBool ConcreteElastic(const PDModel *m, PetscInt e, PetscReal s) {
-  const unsigned side = m->branch ? m->branch[e] & PD_BRANCH_SIDE : 0; /* a frozen crack side (PD_BRANCH_OPEN) */
+  const unsigned side = m->faces ? m->branch[e] & PD_BRANCH_SIDE : 0; /* a frozen crack side (PD_BRANCH_OPEN) */
   const PDLaw   *law;
   PetscReal      a;
   if (!m->softening || side == PD_BRANCH_CLOSED || (s < 0 && !m->nslip && !side)) return PETSC_TRUE;

@@ -917,7 +917,8 @@ static PetscErrorCode Run(PDModel *m, PDRecord *rec, const PDPath *from, PetscRe
     PetscReal  len = a.type == ARC_LOAD ? PetscMin(a.dlam, sc->lambda_max - path.lambda_n) : a.dl;
 
     PetscCall(Step(&a, &path, a.type, len, &max_events, &ok));
-    m->branch = NULL;                               /* a step ends with the real law */
+    m->branch = NULL; /* a step ends with the real law */
+    m->faces  = PETSC_FALSE;
     if (ok || a.root_flipped) a.turn = PETSC_FALSE; /* a failed retry on the other root goes back to the first, unchecked */
     rec->newton_its += a.its;
     rec->ksp_its += a.lits;

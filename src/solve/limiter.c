@@ -379,14 +379,16 @@ PetscErrorCode PDModelFreezeSides(PDModel *m, Vec u, PetscInt *nfrozen) {
   }
   PetscCall(PDModelRestoreLocal(m, &ul, &uloc));
   PetscCall(MPIU_Allreduce(&mine, nfrozen, 1, MPIU_INT, MPI_SUM, m->lat->comm));
+  m->faces    = PETSC_TRUE;
   m->nchanged = -1; /* forces changed without a record: the next residual runs the whole loop */
   PetscFunctionReturn(0);
 }
 
-/* Back to the real law's side for every bond. */
+/* Back to the real law's side for every bond: the sides stay in branch, out of force, until a new freeze
+   overwrites them or the next IMPL-EX step's extrapolation clears them. */
 PetscErrorCode PDModelFreeSides(PDModel *m) {
   PetscFunctionBeginUser;
-  for (PetscInt e = 0; m->branch && e < m->bonds->nbonds; e++) m->branch[e] &= (unsigned char)~PD_BRANCH_SIDE;
+  m->faces    = PETSC_FALSE;
   m->nchanged = -1;
   PetscFunctionReturn(0);
 }
