@@ -20,8 +20,12 @@ of them drives its peak's rise under refinement.
 With --fixed-horizon, the beams at dx = 5 and 2.5 mm with the horizon of the spacing twice as coarse (m = 2 pi),
 under both bond calibrations.
 
+With --implex, the beams traced by path following with IMPL-EX steps from the first step (the 3D D = 200 mm beams'
+path, docs/arclength.md) instead of the scenes' displacement control: each spacing's peak and curve against the
+default path's at the same spacing, and what each path cost.
+
 Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants]
-       [--fixed-horizon [--coarse 0.01 0.005]]
+       [--fixed-horizon [--coarse 0.01 0.005]] [--implex]
        [--timeout 7200] [--force] [--report]
 """
 import argparse
@@ -46,6 +50,8 @@ FIXED_HORIZON = ["-pd_horizon_ratio", repr(2 * math.pi)]
 FIXED_PAIRS = [(0.01, 0.005), (0.005, 0.0025)]
 # the two bond calibrations (docs/calibration.md): the lattice's bulk stiffness depends on m under the first only
 CALIBRATIONS = {"continuum": [], "stencil": ["-pd_calibration", "stencil"]}
+# path following with IMPL-EX steps at the damage error the 3D D = 200 mm beams take (benchmarks/size_effect.py)
+IMPLEX = ["-pd_control", "arclength", "-pd_arclength_implex", "0.03"]
 DAMAGED = 0.1  # nodal damage above which a node counts in the damaged zone
 
 
@@ -146,6 +152,7 @@ def report(res):
     findings(res, summary, lines)
     variants_report(res, lines)
     fixed_horizon_report(res, lines)
+    implex_report(res, lines)
     write_lines("softening_convergence.md", lines)
     plot(res)
 
@@ -212,6 +219,38 @@ def fixed_horizon_report(res, lines):
         lines.append("")
 
 
+def implex_report(res, lines):
+    """The beams by path following with IMPL-EX steps against the default path, spacing by spacing."""
+    rows = [(b, dx) for b in BEAMS for dx in SPACINGS if passed_peak(res.get(key(b, dx, IMPLEX)))]
+    if not rows:
+        return
+    lines += ["## Path following with IMPL-EX steps", "",
+              "The same scenes traced by path following with IMPL-EX steps from the first step (`%s`), the path the 3D" % " ".join(IMPLEX),
+              "D = 200 mm beams take, against the default path (displacement control, handing over where it finds no equilibrium;",
+              "docs/arclength.md, \"The default path\") at the same spacing. 'Curves apart': RMS load difference over the CMOD",
+              "range both reach, over the default path's peak. CPU: each run's own; runs shared the two cores.", "",
+              "| beam | dx (mm) | peak, default path (N) | peak, IMPL-EX (N) | change | curves apart | steps | Newton | Krylov | CPU (s) | CPU, default path (s) | bytes per bond | end |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for b, dx in rows:
+        r, d = res[key(b, dx, IMPLEX)], res.get(key(b, dx))
+        known = passed_peak(d)
+        end = "CMOD %.3f mm" % (1e3 * r["final_cmod_m"]) + ("" if r["status"].startswith("completed") else " (%s)" % (
+            "stopped by its time limit" if r.get("timed_out") else r["status"]))
+        lines.append("| %s | %g | %s | %.0f | %s | %s | %d | %d | %d | %.0f | %s | %.0f | %s |" % (
+            BEAMS[b], 1e3 * dx, "%.0f" % d["peak_N"] if known else "-", r["peak_N"], "%+.1f %%" % (100 * (r["peak_N"] / d["peak_N"] - 1)) if known else "-",
+            "%.1f %%" % (100 * curve_difference(d, r)) if known else "-", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"],
+            "%.0f%s" % (d["cpu_s"], " (stopped by its time limit)" if d.get("timed_out") else "") if d else "-", r["peak_rss_bytes"] / r["bonds"], end))
+    pairs = []
+    for b in BEAMS:
+        dxs = [dx for dx in SPACINGS if passed_peak(res.get(key(b, dx, IMPLEX)))]
+        if len(dxs) >= 2:
+            fine, coarse = res[key(b, dxs[-1], IMPLEX)], res[key(b, dxs[-2], IMPLEX)]
+            pairs.append("%s %+.1f %% (%g to %g mm)" % (BEAMS[b], 100 * (fine["peak_N"] / coarse["peak_N"] - 1), 1e3 * dxs[-2], 1e3 * dxs[-1]))
+    if pairs:
+        lines += ["", "Peak change between the two finest spacings under IMPL-EX: %s." % "; ".join(pairs)]
+    lines.append("")
+
+
 def plot(res):
     plt = pyplot()
     fig, axes = plt.subplots(1, 4, figsize=(19, 4.5))
@@ -250,6 +289,7 @@ def main():
     ap.add_argument("--variants", action="store_true", help="the unnotched beam with one ingredient changed (VARIANTS), dx = 10 to 2.5 mm")
     ap.add_argument("--fixed-horizon", action="store_true", help="the beams at half a spacing with its horizon (m = 2 pi), both calibrations")
     ap.add_argument("--coarse", type=float, nargs="+", default=[c for c, _ in FIXED_PAIRS], help="with --fixed-horizon: the coarse spacings of the pairs run")
+    ap.add_argument("--implex", action="store_true", help="the beams by path following with IMPL-EX steps (IMPLEX) at the spacings of --dx")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds before a run is stopped (SIGTERM keeps its curve)")
     ap.add_argument("--force", action="store_true", help="run again what is already stored")
     ap.add_argument("--report", action="store_true")
@@ -261,6 +301,14 @@ def main():
                 for dx, more in [(c, []) for c, _ in a.pairs] + [(f, FIXED_HORIZON) for _, f in a.pairs]:
                     if key(beam, dx, more + extra) not in load_results(DATA):
                         store_result(DATA, key(beam, dx, more + extra), measure(beam, dx, a.timeout, more + extra))
+    elif a.implex and not a.report:
+        for dx in a.dx:
+            for beam in a.beams:
+                if key(beam, dx, IMPLEX) in load_results(DATA) and not a.force:
+                    continue
+                r = measure(beam, dx, a.timeout, IMPLEX)
+                print(key(beam, dx, IMPLEX), {k: v for k, v in r.items() if k != "curve"}, flush=True)
+                store_result(DATA, key(beam, dx, IMPLEX), r)
     elif a.variants and not a.report:
         for extra in VARIANTS.values():
             for dx in VARIANT_SPACINGS:

@@ -5,6 +5,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 EXE = os.environ.get("PDIMPLICIT", os.path.join(ROOT, "build", "pdimplicit"))
@@ -62,7 +63,10 @@ def run(scene_name, *args, ranks=1, expect_ok=True, outdir=None):
     cmd += ["-pd_output_dir", outdir] + [str(a) for a in args]
     if ranks > 1:
         cmd = [MPIEXEC, "-n", str(ranks)] + cmd
+    start = time.monotonic()
     proc = subprocess.run(cmd, capture_output=True, text=True, env=ENV)
+    if os.environ.get("PDTEST_TIMES"):  # where a test's time goes: each run's wall time and options
+        print("[%.1f s] %s" % (time.monotonic() - start, " ".join(str(a) for a in args)), file=sys.stderr)
     r = Run(outdir, proc)
     if expect_ok and proc.returncode != 0:
         fail("run failed (%d): %s\n%s\n%s" % (proc.returncode, " ".join(cmd), proc.stdout[-3000:], proc.stderr[-3000:]))
