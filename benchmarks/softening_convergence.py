@@ -20,12 +20,13 @@ of them drives its peak's rise under refinement.
 With --fixed-horizon, the beams at dx = 5 and 2.5 mm with the horizon of the spacing twice as coarse (m = 2 pi),
 under both bond calibrations.
 
-With --implex, the beams traced by path following with IMPL-EX steps from the first step (the 3D D = 200 mm beams'
-path, docs/arclength.md) instead of the scenes' displacement control: each spacing's peak and curve against the
-default path's at the same spacing, and what each path cost.
+With --implex [ERROR ...], the beams traced by path following with IMPL-EX steps from the first step (the 3D
+D = 200 mm beams' path, docs/arclength.md) at each damage error per step given (0.03 without a value) instead of the
+scenes' displacement control: each spacing's peak and curve against the default path's at the same spacing, and
+what each path cost.
 
 Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants]
-       [--fixed-horizon [--coarse 0.01 0.005]] [--implex]
+       [--fixed-horizon [--coarse 0.01 0.005]] [--implex [0.03 0.01]]
        [--timeout 7200] [--force] [--report]
 """
 import argparse
@@ -50,8 +51,14 @@ FIXED_HORIZON = ["-pd_horizon_ratio", repr(2 * math.pi)]
 FIXED_PAIRS = [(0.01, 0.005), (0.005, 0.0025)]
 # the two bond calibrations (docs/calibration.md): the lattice's bulk stiffness depends on m under the first only
 CALIBRATIONS = {"continuum": [], "stencil": ["-pd_calibration", "stencil"]}
-# path following with IMPL-EX steps at the damage error the 3D D = 200 mm beams take (benchmarks/size_effect.py)
-IMPLEX = ["-pd_control", "arclength", "-pd_arclength_implex", "0.03"]
+# path following with IMPL-EX steps; 0.03 is the damage error per step the 3D D = 200 mm beams take (benchmarks/size_effect.py)
+IMPLEX_ERRORS = [0.03, 0.01, 0.003]
+
+
+def implex(error):
+    return ["-pd_control", "arclength", "-pd_arclength_implex", "%g" % error]
+
+
 DAMAGED = 0.1  # nodal damage above which a node counts in the damaged zone
 
 
@@ -221,31 +228,32 @@ def fixed_horizon_report(res, lines):
 
 def implex_report(res, lines):
     """The beams by path following with IMPL-EX steps against the default path, spacing by spacing."""
-    rows = [(b, dx) for b in BEAMS for dx in SPACINGS if passed_peak(res.get(key(b, dx, IMPLEX)))]
+    rows = [(b, dx, e) for b in BEAMS for dx in SPACINGS for e in IMPLEX_ERRORS if passed_peak(res.get(key(b, dx, implex(e))))]
     if not rows:
         return
     lines += ["## Path following with IMPL-EX steps", "",
-              "The same scenes traced by path following with IMPL-EX steps from the first step (`%s`), the path the 3D" % " ".join(IMPLEX),
-              "D = 200 mm beams take, against the default path (displacement control, handing over where it finds no equilibrium;",
+              "The same scenes traced by path following with IMPL-EX steps from the first step (`%s ERROR`, ERROR the" % " ".join(implex(0)[:-1]),
+              "damage error per step; the 3D D = 200 mm beams take 0.03), against the default path (displacement control, handing over where it finds no equilibrium;",
               "docs/arclength.md, \"The default path\") at the same spacing. 'Curves apart': RMS load difference over the CMOD",
               "range both reach, over the default path's peak. CPU: each run's own; runs shared the two cores.", "",
-              "| beam | dx (mm) | peak, default path (N) | peak, IMPL-EX (N) | change | curves apart | steps | Newton | Krylov | CPU (s) | CPU, default path (s) | bytes per bond | end |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    for b, dx in rows:
-        r, d = res[key(b, dx, IMPLEX)], res.get(key(b, dx))
+              "| beam | dx (mm) | damage error per step | peak, default path (N) | peak, IMPL-EX (N) | change | curves apart | steps | Newton | Krylov | CPU (s) | CPU, default path (s) | bytes per bond | end |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for b, dx, e in rows:
+        r, d = res[key(b, dx, implex(e))], res.get(key(b, dx))
         known = passed_peak(d)
         end = "CMOD %.3f mm" % (1e3 * r["final_cmod_m"]) + ("" if r["status"].startswith("completed") else " (%s)" % (
             "stopped by its time limit" if r.get("timed_out") else r["status"]))
-        lines.append("| %s | %g | %s | %.0f | %s | %s | %d | %d | %d | %.0f | %s | %.0f | %s |" % (
-            BEAMS[b], 1e3 * dx, "%.0f" % d["peak_N"] if known else "-", r["peak_N"], "%+.1f %%" % (100 * (r["peak_N"] / d["peak_N"] - 1)) if known else "-",
+        lines.append("| %s | %g | %g | %s | %.0f | %s | %s | %d | %d | %d | %.0f | %s | %.0f | %s |" % (
+            BEAMS[b], 1e3 * dx, e, "%.0f" % d["peak_N"] if known else "-", r["peak_N"], "%+.1f %%" % (100 * (r["peak_N"] / d["peak_N"] - 1)) if known else "-",
             "%.1f %%" % (100 * curve_difference(d, r)) if known else "-", r["steps"], r["newton_its"], r["ksp_its"], r["cpu_s"],
             "%.0f%s" % (d["cpu_s"], " (stopped by its time limit)" if d.get("timed_out") else "") if d else "-", r["peak_rss_bytes"] / r["bonds"], end))
     pairs = []
     for b in BEAMS:
-        dxs = [dx for dx in SPACINGS if passed_peak(res.get(key(b, dx, IMPLEX)))]
-        if len(dxs) >= 2:
-            fine, coarse = res[key(b, dxs[-1], IMPLEX)], res[key(b, dxs[-2], IMPLEX)]
-            pairs.append("%s %+.1f %% (%g to %g mm)" % (BEAMS[b], 100 * (fine["peak_N"] / coarse["peak_N"] - 1), 1e3 * dxs[-2], 1e3 * dxs[-1]))
+        for e in IMPLEX_ERRORS:
+            dxs = [dx for dx in SPACINGS if passed_peak(res.get(key(b, dx, implex(e))))]
+            if len(dxs) >= 2:
+                fine, coarse = res[key(b, dxs[-1], implex(e))], res[key(b, dxs[-2], implex(e))]
+                pairs.append("%s at %g, %+.1f %% (%g to %g mm)" % (BEAMS[b], e, 100 * (fine["peak_N"] / coarse["peak_N"] - 1), 1e3 * dxs[-2], 1e3 * dxs[-1]))
     if pairs:
         lines += ["", "Peak change between the two finest spacings under IMPL-EX: %s." % "; ".join(pairs)]
     lines.append("")
@@ -289,12 +297,15 @@ def main():
     ap.add_argument("--variants", action="store_true", help="the unnotched beam with one ingredient changed (VARIANTS), dx = 10 to 2.5 mm")
     ap.add_argument("--fixed-horizon", action="store_true", help="the beams at half a spacing with its horizon (m = 2 pi), both calibrations")
     ap.add_argument("--coarse", type=float, nargs="+", default=[c for c, _ in FIXED_PAIRS], help="with --fixed-horizon: the coarse spacings of the pairs run")
-    ap.add_argument("--implex", action="store_true", help="the beams by path following with IMPL-EX steps (IMPLEX) at the spacings of --dx")
+    ap.add_argument("--implex", type=float, nargs="*", help="the beams by path following with IMPL-EX steps at these damage errors per step "
+                    "(0.03 without a value) and the spacings of --dx")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds before a run is stopped (SIGTERM keeps its curve)")
     ap.add_argument("--force", action="store_true", help="run again what is already stored")
     ap.add_argument("--report", action="store_true")
     a = ap.parse_args()
     a.pairs = [p for p in FIXED_PAIRS if p[0] in a.coarse]
+    if a.implex == []:
+        a.implex = [0.03]
     if a.fixed_horizon and not a.report:
         for beam in a.beams:
             for extra in CALIBRATIONS.values():
@@ -302,13 +313,14 @@ def main():
                     if key(beam, dx, more + extra) not in load_results(DATA):
                         store_result(DATA, key(beam, dx, more + extra), measure(beam, dx, a.timeout, more + extra))
     elif a.implex and not a.report:
-        for dx in a.dx:
-            for beam in a.beams:
-                if key(beam, dx, IMPLEX) in load_results(DATA) and not a.force:
-                    continue
-                r = measure(beam, dx, a.timeout, IMPLEX)
-                print(key(beam, dx, IMPLEX), {k: v for k, v in r.items() if k != "curve"}, flush=True)
-                store_result(DATA, key(beam, dx, IMPLEX), r)
+        for error in a.implex:
+            for dx in a.dx:
+                for beam in a.beams:
+                    if key(beam, dx, implex(error)) in load_results(DATA) and not a.force:
+                        continue
+                    r = measure(beam, dx, a.timeout, implex(error))
+                    print(key(beam, dx, implex(error)), {k: v for k, v in r.items() if k != "curve"}, flush=True)
+                    store_result(DATA, key(beam, dx, implex(error)), r)
     elif a.variants and not a.report:
         for extra in VARIANTS.values():
             for dx in VARIANT_SPACINGS:
