@@ -256,24 +256,26 @@ def implex_report(res, lines):
                 pairs.append("%s at %g, %+.1f %% (%g to %g mm)" % (BEAMS[b], e, 100 * (fine["peak_N"] / coarse["peak_N"] - 1), 1e3 * dxs[-2], 1e3 * dxs[-1]))
     if pairs:
         lines += ["", "Peak change between the two finest spacings under IMPL-EX: %s." % "; ".join(pairs)]
-    lines += ["", "Findings:", ""]
-    # where the default path did not finish and IMPL-EX did
+    findings = []
+    # where the default path did not finish: how far IMPL-EX got, and in what time
     for b, dx, e in rows:
         r, d = res[key(b, dx, implex(e))], res.get(key(b, dx))
-        if d and d.get("timed_out") and r["status"].startswith("completed"):
-            lines.append("- %s at dx = %g mm: the default path stopped by its time limit at CMOD %.3f mm after %.0f s of CPU; IMPL-EX at %g "
-                         "reached CMOD %.3f mm in %.0f s (%d steps, %d Newton iterations)." % (
-                             BEAMS[b].capitalize(), 1e3 * dx, 1e3 * d["final_cmod_m"], d["cpu_s"], e, 1e3 * r["final_cmod_m"], r["cpu_s"],
-                             r["steps"], r["newton_its"]))
+        if d and d.get("timed_out"):
+            findings.append("- %s at dx = %g mm: the default path stopped by its time limit at CMOD %.3f mm after %.0f s of CPU; IMPL-EX at %g "
+                            "reached CMOD %.3f mm in %.0f s (%d steps, %d Newton iterations%s)." % (
+                                BEAMS[b].capitalize(), 1e3 * dx, 1e3 * d["final_cmod_m"], d["cpu_s"], e, 1e3 * r["final_cmod_m"], r["cpu_s"],
+                                r["steps"], r["newton_its"], "" if r["status"].startswith("completed") else "; stopped by its time limit"))
     # how the peak approaches the default path's as the damage error per step falls
     for b in BEAMS:
         for dx in SPACINGS:
             errs = [e for e in IMPLEX_ERRORS if passed_peak(res.get(key(b, dx, implex(e))))]
             d = res.get(key(b, dx))
             if len(errs) >= 2 and passed_peak(d):
-                lines.append("- %s at dx = %g mm, peak against the default path's by damage error per step: %s." % (
+                findings.append("- %s at dx = %g mm, peak against the default path's by damage error per step: %s." % (
                     BEAMS[b].capitalize(), 1e3 * dx, ", ".join("%+.1f %% at %g (%.0f s)" % (
                         100 * (res[key(b, dx, implex(e))]["peak_N"] / d["peak_N"] - 1), e, res[key(b, dx, implex(e))]["cpu_s"]) for e in errs)))
+    if findings:
+        lines += ["", "Findings:", ""] + findings
     lines.append("")
 
 
