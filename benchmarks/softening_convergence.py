@@ -23,10 +23,11 @@ under both bond calibrations.
 With --implex [ERROR ...], the beams traced by path following with IMPL-EX steps from the first step (the 3D
 D = 200 mm beams' path, docs/arclength.md) at each damage error per step given (0.03 without a value) instead of the
 scenes' displacement control: each spacing's peak and curve against the default path's at the same spacing, and
-what each path cost.
+what each path cost. With --increments N, the default path with N displacement increments over the scene's ramp
+instead of its 200 (finer increments through the peak), reported beside them.
 
 Usage: benchmarks/softening_convergence.py [--dx 0.01 0.005 0.0025 0.00125] [--beams un fn hn] [--variants]
-       [--fixed-horizon [--coarse 0.01 0.005]] [--implex [0.03 0.01]]
+       [--fixed-horizon [--coarse 0.01 0.005]] [--implex [0.03 0.01]] [--increments 800]
        [--timeout 7200] [--force] [--report]
 """
 import argparse
@@ -53,6 +54,8 @@ FIXED_PAIRS = [(0.01, 0.005), (0.005, 0.0025)]
 CALIBRATIONS = {"continuum": [], "stencil": ["-pd_calibration", "stencil"]}
 # path following with IMPL-EX steps; 0.03 is the damage error per step the 3D D = 200 mm beams take (benchmarks/size_effect.py)
 IMPLEX_ERRORS = [0.03, 0.01, 0.003]
+# displacement increments over the scene's ramp for --increments (the scenes take 200)
+INCREMENTS = [800]
 
 
 def implex(error):
@@ -257,6 +260,30 @@ def implex_report(res, lines):
     if pairs:
         lines += ["", "Peak change between the two finest spacings under IMPL-EX: %s." % "; ".join(pairs)]
     findings = []
+    # the default path with finer displacement increments (--increments)
+    for b in BEAMS:
+        for dx in SPACINGS:
+            d = res.get(key(b, dx))
+            for n in INCREMENTS:
+                f = res.get(key(b, dx, ["-pd_steps", str(n)]))
+                if passed_peak(f) and passed_peak(d):
+                    findings.append("- %s at dx = %g mm, the default path with %d displacement increments instead of the scene's: peak %.0f N "
+                                    "(%+.1f %% against its own), %d Newton iterations, %.0f s." % (
+                                        BEAMS[b].capitalize(), 1e3 * dx, n, f["peak_N"], 100 * (f["peak_N"] / d["peak_N"] - 1), f["newton_its"],
+                                        f["cpu_s"]))
+    # the explicit path's peak of the same scene, where the accuracy-cost study has one (benchmarks/accuracy_cost.py)
+    explicit = load_results(os.path.join(RESULTS_DIR, "accuracy_cost.json"))
+    for b in BEAMS:
+        for dx in SPACINGS:
+            e_run = explicit.get("gregoire_d50_%s/dx=%g/m=%.3f/explicit" % (b, dx, math.pi))
+            errs = [e for e in IMPLEX_ERRORS if passed_peak(res.get(key(b, dx, implex(e))))]
+            d = res.get(key(b, dx))
+            if e_run and errs and passed_peak(d):
+                pe, fine = e_run["peak"], res[key(b, dx, implex(min(errs)))]["peak_N"]
+                findings.append("- %s at dx = %g mm against the explicit path's peak, %.0f N (`accuracy_cost.json`, a load ramp of %s s): the "
+                                "default path %+.1f %%, IMPL-EX at %g %+.1f %%." % (
+                                    BEAMS[b].capitalize(), 1e3 * dx, pe, e_run["options"][e_run["options"].index("-pd_ramp_time") + 1],
+                                    100 * (d["peak_N"] / pe - 1), min(errs), 100 * (fine / pe - 1)))
     # where the default path did not finish: how far IMPL-EX got, and in what time
     for b, dx, e in rows:
         r, d = res[key(b, dx, implex(e))], res.get(key(b, dx))
@@ -319,6 +346,8 @@ def main():
     ap.add_argument("--coarse", type=float, nargs="+", default=[c for c, _ in FIXED_PAIRS], help="with --fixed-horizon: the coarse spacings of the pairs run")
     ap.add_argument("--implex", type=float, nargs="*", help="the beams by path following with IMPL-EX steps at these damage errors per step "
                     "(0.03 without a value) and the spacings of --dx")
+    ap.add_argument("--increments", type=int, choices=INCREMENTS, help="the default path with this many displacement increments, at the "
+                    "spacings of --dx")
     ap.add_argument("--timeout", type=int, default=7200, help="seconds before a run is stopped (SIGTERM keeps its curve)")
     ap.add_argument("--force", action="store_true", help="run again what is already stored")
     ap.add_argument("--report", action="store_true")
@@ -332,6 +361,15 @@ def main():
                 for dx, more in [(c, []) for c, _ in a.pairs] + [(f, FIXED_HORIZON) for _, f in a.pairs]:
                     if key(beam, dx, more + extra) not in load_results(DATA):
                         store_result(DATA, key(beam, dx, more + extra), measure(beam, dx, a.timeout, more + extra))
+    elif a.increments and not a.report:
+        for dx in a.dx:
+            for beam in a.beams:
+                extra = ["-pd_steps", str(a.increments)]
+                if key(beam, dx, extra) in load_results(DATA) and not a.force:
+                    continue
+                r = measure(beam, dx, a.timeout, extra)
+                print(key(beam, dx, extra), {k: v for k, v in r.items() if k != "curve"}, flush=True)
+                store_result(DATA, key(beam, dx, extra), r)
     elif a.implex and not a.report:
         for error in a.implex:
             for dx in a.dx:
