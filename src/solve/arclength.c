@@ -409,7 +409,7 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
   PDModel        *m     = a->m;
   const PetscInt  maxit = 25;
   PetscReal       dlam, rnorm = PETSC_MAX_REAL, fnorm, damp = 1;
-  PetscBool       fine, sides = PETSC_FALSE;
+  PetscBool       fine;
   PetscInt        resides = 0;
   const PetscBool aug     = a->augmented && (type == PD_ARC_CMOD || type == PD_ARC_DISSIPATION) ? PETSC_TRUE : PETSC_FALSE;
 
@@ -461,14 +461,13 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
                             (double)rnorm, nfrozen));
         PetscCall(Residual(a, &rnorm, &fnorm));
         rises = 0;
-      } else if (a->kx_n && !sides && !resides) {
+      } else if (a->kx_n && !m->faces && !resides) {
         /* IMPL-EX's secant has one kink left, a damaged bond's at zero stretch, where the faces of a sliding
            crack close and open from one iterate to the next: each takes the side it had at the last step */
         PetscCall(PDModelFreezeSides(m, p->u_n, &nfrozen));
         PetscCall(PetscInfo(NULL,
                             "arclength: Newton cycles at |R| %g: %" PetscInt_FMT " damaged bonds frozen on their side of zero stretch\n",
                             (double)rnorm, nfrozen));
-        sides    = PETSC_TRUE;
         a->faces = PETSC_TRUE;
         PetscCall(Residual(a, &rnorm, &fnorm));
         rises = 0;
@@ -508,12 +507,11 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
     }
     if (rnorm <= tol && a->kx_n) { /* IMPL-EX: the secant step is the step; no limiter */
       PetscBool settled = PETSC_TRUE;
-      if (sides) {
+      if (m->faces) { /* frozen sides in force (PDModelFreezeSides) */
         /* equilibrium on frozen sides holds for the real law once every bond lies on the side it was given;
            otherwise each takes the side it is on and Newton goes on (an active set) */
         PetscReal rfree;
         PetscCall(PDModelFreeSides(m));
-        sides = PETSC_FALSE;
         PetscCall(Residual(a, &rfree, &fnorm));
         if (rfree > tol && ++resides <= PD_IMPLEX_RESIDES) {
           PetscInt nfrozen;
@@ -521,7 +519,6 @@ static PetscErrorCode Step(Arc *a, PDPath *p, PetscInt type, PetscReal dl, Petsc
           PetscCall(PetscInfo(NULL,
                               "arclength: frozen sides in equilibrium, real law |R| %g: %" PetscInt_FMT " damaged bonds frozen again\n",
                               (double)rfree, nfrozen));
-          sides   = PETSC_TRUE;
           settled = PETSC_FALSE;
           k       = 0;
           rises   = 0;
