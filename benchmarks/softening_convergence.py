@@ -337,6 +337,17 @@ def plot(res):
     save_figure(fig, "softening_convergence.png", dpi=100)
 
 
+def run_missing(a, extra):
+    """Runs each beam of --beams at each spacing of --dx with the extra options, unless stored (or --force)."""
+    for dx in a.dx:
+        for beam in a.beams:
+            if key(beam, dx, extra) in load_results(DATA) and not a.force:
+                continue
+            r = measure(beam, dx, a.timeout, extra)
+            print(key(beam, dx, extra), {k: v for k, v in r.items() if k != "curve"}, flush=True)
+            store_result(DATA, key(beam, dx, extra), r)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--dx", type=float, nargs="+", default=SPACINGS)
@@ -362,36 +373,17 @@ def main():
                     if key(beam, dx, more + extra) not in load_results(DATA):
                         store_result(DATA, key(beam, dx, more + extra), measure(beam, dx, a.timeout, more + extra))
     elif a.increments and not a.report:
-        for dx in a.dx:
-            for beam in a.beams:
-                extra = ["-pd_steps", str(a.increments)]
-                if key(beam, dx, extra) in load_results(DATA) and not a.force:
-                    continue
-                r = measure(beam, dx, a.timeout, extra)
-                print(key(beam, dx, extra), {k: v for k, v in r.items() if k != "curve"}, flush=True)
-                store_result(DATA, key(beam, dx, extra), r)
+        run_missing(a, ["-pd_steps", str(a.increments)])
     elif a.implex and not a.report:
         for error in a.implex:
-            for dx in a.dx:
-                for beam in a.beams:
-                    if key(beam, dx, implex(error)) in load_results(DATA) and not a.force:
-                        continue
-                    r = measure(beam, dx, a.timeout, implex(error))
-                    print(key(beam, dx, implex(error)), {k: v for k, v in r.items() if k != "curve"}, flush=True)
-                    store_result(DATA, key(beam, dx, implex(error)), r)
+            run_missing(a, implex(error))
     elif a.variants and not a.report:
         for extra in VARIANTS.values():
             for dx in VARIANT_SPACINGS:
                 if key("un", dx, extra) not in load_results(DATA):
                     store_result(DATA, key("un", dx, extra), measure("un", dx, a.timeout, extra))
     elif not a.report:
-        for dx in a.dx:
-            for beam in a.beams:
-                if key(beam, dx) in load_results(DATA) and not a.force:
-                    continue
-                r = measure(beam, dx, a.timeout)
-                print(key(beam, dx), {k: v for k, v in r.items() if k != "curve"}, flush=True)
-                store_result(DATA, key(beam, dx), r)
+        run_missing(a, [])
     report(load_results(DATA))
 
 
